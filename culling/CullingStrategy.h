@@ -1,0 +1,45 @@
+#pragma once
+// The one interface the harness knows: a frame of poses in, potentially colliding sets and
+// counters out. A strategy is created by name from the StrategyRegistry, attached once to a
+// scene and a visibility backend, then called once per frame.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "culling/PotentiallyCollidingSets.h"
+#include "culling/visibility/VisibilityBackend.h"
+#include "core/Pose.h"
+#include "scenes/ScenarioConfig.h"
+#include "scenes/SceneGeometry.h"
+
+namespace cdb {
+
+struct CullingCounters {
+  VisibilityCounters visibility;
+  std::uint64_t pcsSize = 0;   // objects left in some set after culling
+  std::uint64_t sets = 0;      // number of potentially colliding (collision-independent) sets
+  std::uint64_t pcsTriangles = 0;  // triangles left for the exact phase
+};
+
+struct CullingResult {
+  PotentiallyCollidingSets sets;
+  CullingCounters counters;
+};
+
+struct FrameInput {
+  std::span<const Pose> poses;  // one per object of the attached scene
+  int frame = 0;
+};
+
+class CullingStrategy {
+ public:
+  virtual ~CullingStrategy() = default;
+  [[nodiscard]] virtual std::string_view name() const = 0;
+  // Per-scene preparation (hierarchies, resident geometry). The backend outlives the strategy.
+  virtual void attach(const SceneGeometry& scene, VisibilityBackend& backend) = 0;
+  [[nodiscard]] virtual CullingResult cull(const FrameInput& frame) = 0;
+};
+
+}  // namespace cdb

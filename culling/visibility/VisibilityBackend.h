@@ -1,0 +1,107 @@
+#pragma once
+// The visibility backend: everything a culling strategy asks of the rasteriser. A strategy draws
+// pieces of objects into a depth buffer and asks, with occlusion queries, whether a piece is
+// "fully visible" with respect to what was drawn before it (no sample of it at or behind the
+// stored depth). Two implementations: OpenGL occlusion queries (GlOcclusionQueryBackend) and a
+// scripted oracle for unit tests (ScriptedVisibilityOracle).
+//
+// Queries are asynchronous: they are numbered 0, 1, 2, ... in the order issued since the last
+// fetchResults(), which returns all their answers at once (one synchronisation point).
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "core/Aabb.h"
+#include "core/OrientedBox.h"
+#include "core/Pose.h"
+#include "scenes/SceneGeometry.h"
+
+namespace cdb {
+
+// An orthographic view looking along `direction` (unit; depth grows along it), fitted to `bounds`
+// (the world box of what the pass tests), rendered into a resolution x resolution depth buffer.
+struct ViewSpec {
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  Aabb bounds;
+  int resolution = 800;
+};
+
+// How a pass uses the depth buffer.
+//  Fresh:        clear it, use the whole depth range (CULLIDE: a clear per pass).
+//  SharedFirst:  clear it, use the near half of the range.
+//  SharedSecond: no clear, use the far half with the depth order reversed, so that nothing left
+//                by the SharedFirst pass occludes anything of this one: two passes, one clear
+//                (thesis 3.2).
+enum class DepthUse { Fresh, SharedFirst, SharedSecond };
+
+// Contiguous triangles [firstTriangle, firstTriangle + triangleCount) of an object's mesh.
+struct MeshRange {
+  ObjectId object = 0;
+  std::uint32_t firstTriangle = 0;
+  std::uint32_t triangleCount = 0;
+};
+
+struct VisibilityOptions {
+  // Conservative: every pixel a triangle touches is covered (rasterisation widened by at least a
+  // pixel) and depth is offset by the depth slope times the pixel size plus the depth buffer's
+  // precision: drawn pieces write their nearest depth over the pixel, tested pieces test their
+  // farthest. No real contact is then lost at any resolution.
+  bool conservative = true;
+  // Raw mode: plain rasterisation with this small offset (NDC depth units) toward the tested piece
+  // being seen as occluded, as in the thesis.
+  double rawDepthOffset = 1e-5;
+};
+
+struct VisibilityCounters {
+  std::uint64_t queries = 0;         // occlusion queries issued
+  std::uint64_t draws = 0;           // draw calls (queried and depth-writing)
+  std::uint64_t trianglesDrawn = 0;  // triangles submitted by those draws
+  std::uint64_t depthClears = 0;
+  std::uint64_t passes = 0;
+  std::uint64_t fetches = 0;         // synchronisations to read query results
+
+  VisibilityCounters& operator+=(const VisibilityCounters& o) {
+    queries += o.queries; draws += o.draws; trianglesDrawn += o.trianglesDrawn;
+    depthClears += o.depthClears; passes += o.passes; fetches += o.fetches;
+    return *this;
+  }
+};
+
+using QueryIndex = std::uint32_t;
+
+class VisibilityBackend {
+ public:
+  virtual ~VisibilityBackend() = default;
+
+  [[nodiscard]] virtual std::string_view name() const = 0;
+  virtual void setOptions(const VisibilityOptions& options) = 0;
+
+  // Makes the scene's meshes resident (once per scene, not per frame).
+  virtual void attachScene(const SceneGeometry& scene) = 0;
+  // Poses of every object for the draws that follow (once per frame).
+  virtual void setPoses(std::span<const Pose> poses) = 0;
+
+  // Starts a pass along `view`; see DepthUse.
+  virtual void beginPass(const ViewSpec& view, DepthUse depth) = 0;
+
+  // Fully-visible tests: drawn with depth writes off; the answer comes from fetchResults().
+  virtual QueryIndex queryRange(const MeshRange& range) = 0;
+  // A box in the object's local frame (a BVH node), drawn under the object's pose.
+  virtual QueryIndex queryBox(ObjectId object, const OrientedBox& localBox) = 0;
+
+  // Depth writes (no query).
+  virtual void writeRange(const MeshRange& range) = 0;
+  virtual void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) = 0;
+  virtual void writeBox(ObjectId object, const OrientedBox& localBox) = 0;
+
+  // Answers of every query issued since the last call, in issue order: 1 = fully visible.
+  virtual void fetchResults(std::vector<std::uint8_t>& fullyVisible) = 0;
+
+  [[nodiscard]] virtual VisibilityCounters counters() const = 0;
+  virtual void resetCounters() = 0;
+};
+
+}  // namespace cdb
