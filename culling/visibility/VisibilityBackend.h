@@ -68,6 +68,11 @@ struct VisibilityCounters {
     depthClears += o.depthClears; passes += o.passes; fetches += o.fetches;
     return *this;
   }
+  friend VisibilityCounters operator-(VisibilityCounters a, const VisibilityCounters& b) {
+    a.queries -= b.queries; a.draws -= b.draws; a.trianglesDrawn -= b.trianglesDrawn;
+    a.depthClears -= b.depthClears; a.passes -= b.passes; a.fetches -= b.fetches;
+    return a;
+  }
 };
 
 using QueryIndex = std::uint32_t;

@@ -1,0 +1,67 @@
+#pragma once
+// A visibility backend for unit tests: no rasterisation, answers come from a script (a callable
+// deciding each query), and every call is logged so a test can check the order of the tests a
+// strategy performs (e.g. the thesis' worked example of Algorithm 3.2).
+#include <functional>
+#include <vector>
+
+#include "culling/visibility/VisibilityBackend.h"
+
+namespace cdb {
+
+struct OracleCall {
+  enum class Kind { BeginPass, QueryRange, QueryBox, WriteRange, WriteTriangles, WriteBox };
+  Kind kind = Kind::BeginPass;
+  int pass = -1;  // index of the pass it belongs to (0, 1, ...)
+  ObjectId object = 0;
+  MeshRange range;        // QueryRange / WriteRange
+  OrientedBox box;        // QueryBox / WriteBox
+  std::vector<std::uint32_t> triangles;  // WriteTriangles
+  ViewSpec view;          // BeginPass
+  DepthUse depth = DepthUse::Fresh;  // BeginPass
+};
+
+class ScriptedVisibilityOracle final : public VisibilityBackend {
+ public:
+  // Returns true when the queried piece is fully visible. `writtenSoFar` is every write of the
+  // current pass before the query, so a geometric script can decide from it.
+  using Script = std::function<bool(const OracleCall& query, std::span<const OracleCall> writtenSoFar)>;
+
+  explicit ScriptedVisibilityOracle(Script script) : script_(std::move(script)) {}
+
+  [[nodiscard]] std::string_view name() const override { return "scripted-oracle"; }
+  void setOptions(const VisibilityOptions& options) override { options_ = options; }
+  void attachScene(const SceneGeometry& scene) override { scene_ = &scene; }
+  void setPoses(std::span<const Pose> poses) override { poses_ = poses; }
+  void beginPass(const ViewSpec& view, DepthUse depth) override;
+  QueryIndex queryRange(const MeshRange& range) override;
+  QueryIndex queryBox(ObjectId object, const OrientedBox& localBox) override;
+  void writeRange(const MeshRange& range) override;
+  void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) override;
+  void writeBox(ObjectId object, const OrientedBox& localBox) override;
+  void fetchResults(std::vector<std::uint8_t>& fullyVisible) override;
+  [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
+  void resetCounters() override { counters_ = {}; }
+
+  [[nodiscard]] const std::vector<OracleCall>& log() const { return log_; }
+  // Objects queried in pass `pass`, in order.
+  [[nodiscard]] std::vector<ObjectId> queriedObjects(int pass) const;
+  [[nodiscard]] std::span<const Pose> poses() const { return poses_; }
+  [[nodiscard]] const VisibilityOptions& options() const { return options_; }
+
+ private:
+  QueryIndex query(OracleCall call);
+  void write(OracleCall call);
+
+  Script script_;
+  VisibilityOptions options_;
+  const SceneGeometry* scene_ = nullptr;
+  std::span<const Pose> poses_;
+  std::vector<OracleCall> log_;
+  std::vector<OracleCall> passWrites_;
+  std::vector<std::uint8_t> pending_;
+  int pass_ = -1;
+  VisibilityCounters counters_;
+};
+
+}  // namespace cdb
