@@ -1,0 +1,57 @@
+#include "culling/StrategyRegistry.h"
+
+#include "core/Errors.h"
+#include "culling/strategies/Cullide.h"
+
+namespace cdb {
+
+const StrategyRegistry& StrategyRegistry::builtin() {
+  static const StrategyRegistry registry = [] {
+    StrategyRegistry r;
+    r.add("cullide", "CULLIDE without a hierarchy: object then triangle level, two passes, x y z",
+          [](const StrategyOptions& o) { return std::make_unique<Cullide>(o); });
+    return r;
+  }();
+  return registry;
+}
+
+void StrategyRegistry::add(std::string name, std::string description, Factory factory) {
+  entries_.push_back({std::move(name), std::move(description), std::move(factory)});
+}
+
+const StrategyRegistry::Entry* StrategyRegistry::find(std::string_view name) const {
+  for (const auto& e : entries_)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+bool StrategyRegistry::contains(std::string_view name) const { return find(name) != nullptr; }
+
+std::vector<std::string> StrategyRegistry::names() const {
+  std::vector<std::string> out;
+  for (const auto& e : entries_) out.push_back(e.name);
+  return out;
+}
+
+std::string StrategyRegistry::description(std::string_view name) const {
+  const Entry* e = find(name);
+  return e ? e->description : std::string();
+}
+
+void StrategyRegistry::validate(const std::vector<std::string>& names) const {
+  for (const auto& n : names) {
+    if (!contains(n)) {
+      std::string known;
+      for (const auto& e : entries_) known += (known.empty() ? "" : ", ") + e.name;
+      throw InputError("unknown strategy '" + n + "': expected one of " + known);
+    }
+  }
+}
+
+std::unique_ptr<CullingStrategy> StrategyRegistry::create(std::string_view name,
+                                                          const StrategyOptions& options) const {
+  validate({std::string(name)});
+  return find(name)->factory(options);
+}
+
+}  // namespace cdb

@@ -1,0 +1,47 @@
+#pragma once
+// Strategies by name. The harness creates every strategy through here and knows nothing else of
+// them; a new strategy is one class plus one line in StrategyRegistry.cpp.
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "culling/CullingStrategy.h"
+#include "scenes/ScenarioConfig.h"
+
+namespace cdb {
+
+struct StrategyOptions {
+  int resolution = 800;  // frame-buffer side in pixels
+  CullingSpec culling;   // conservative/raw mode, BVH parameters
+};
+
+class StrategyRegistry {
+ public:
+  using Factory = std::function<std::unique_ptr<CullingStrategy>(const StrategyOptions&)>;
+
+  // The registry with every strategy of the project.
+  static const StrategyRegistry& builtin();
+
+  void add(std::string name, std::string description, Factory factory);
+  // Throws InputError naming the unknown strategy and listing the known ones.
+  [[nodiscard]] std::unique_ptr<CullingStrategy> create(std::string_view name,
+                                                        const StrategyOptions& options) const;
+  [[nodiscard]] bool contains(std::string_view name) const;
+  [[nodiscard]] std::vector<std::string> names() const;
+  [[nodiscard]] std::string description(std::string_view name) const;
+  // Throws InputError for the first unknown name.
+  void validate(const std::vector<std::string>& names) const;
+
+ private:
+  struct Entry {
+    std::string name;
+    std::string description;
+    Factory factory;
+  };
+  const Entry* find(std::string_view name) const;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace cdb
