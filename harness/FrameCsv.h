@@ -1,0 +1,16 @@
+#pragma once
+// frames.csv: one FrameRecord per line, with a header. Read back for merging and tables.
+#include <filesystem>
+#include <iosfwd>
+#include <vector>
+
+#include "harness/FrameRecord.h"
+
+namespace cdb {
+
+void writeFrameCsvHeader(std::ostream& out);
+void writeFrameCsvRow(std::ostream& out, const FrameRecord& r);
+// Throws InputError naming the file and line for a malformed file.
+[[nodiscard]] std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file);
+
+}  // namespace cdb

@@ -1,0 +1,24 @@
+#pragma once
+// What a result folder records about where it was produced.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace cdb {
+
+struct MachineInfo {
+  std::string hostname;
+  std::string cpuModel;
+  unsigned logicalCores = 0;
+  double memoryGiB = 0;
+  std::string os;
+  std::string compiler;
+  std::string buildType;
+  std::string gitCommit;  // "unknown" outside a checkout; "+dirty" appended when modified
+};
+
+[[nodiscard]] MachineInfo probeMachine();
+[[nodiscard]] nlohmann::json toJson(const MachineInfo& m);
+[[nodiscard]] std::string utcTimestamp();
+
+}  // namespace cdb

@@ -1,0 +1,30 @@
+#pragma once
+// What `cdbench run` was asked for: the config file plus command-line overrides.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cdb {
+
+struct RunOptions {
+  std::filesystem::path configPath;
+  std::optional<std::vector<std::string>> strategies;
+  std::optional<std::vector<int>> resolutions;
+  std::optional<std::vector<int>> objectCounts;
+  std::optional<int> frames;
+  std::optional<int> repeats;
+  std::optional<std::uint64_t> seed;
+  std::optional<bool> conservative;  // --raw sets false
+  std::filesystem::path outDir = "results/latest";
+  std::vector<std::string> assetDirs;  // --assets, before CDBENCH_ASSETS
+  std::string glPlatform = "auto";
+  std::optional<std::filesystem::path> recordFile;
+  std::optional<std::filesystem::path> replayFile;
+  bool groundTruth = true;  // --no-truth turns it off
+  bool quiet = false;
+  std::vector<std::string> commandLine;  // recorded in meta.json
+};
+
+}  // namespace cdb

@@ -1,0 +1,23 @@
+#pragma once
+// A strategy's answer on one frame against the ground truth's.
+#include <cstdint>
+#include <vector>
+
+#include "culling/PotentiallyCollidingSets.h"
+#include "culling/exact/ObjectPair.h"
+
+namespace cdb {
+
+struct TruthComparison {
+  std::uint64_t falseNegatives = 0;  // truth pairs missing from the final colliding pairs
+  std::uint64_t falsePositives = 0;  // final pairs the truth does not have
+  std::uint64_t cullingMisses = 0;   // truth pairs not together in any one set (pruned or split)
+};
+
+// Both pair lists sorted and unique.
+[[nodiscard]] TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
+                                               const std::vector<ObjectPair>& found,
+                                               const PotentiallyCollidingSets& sets,
+                                               std::size_t objectCount);
+
+}  // namespace cdb

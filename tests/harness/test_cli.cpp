@@ -1,0 +1,90 @@
+// The cdbench binary end to end: a small env3 run writes its four files with no false negative;
+// bad input exits 2 with one line.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/FrameCsv.h"
+
+namespace {
+
+struct Result {
+  int exitCode = -1;
+  std::string output;
+};
+
+Result runCdbench(const std::string& args) {
+  const std::string cmd = std::string(CDBENCH_BINARY_DIR) + "/cdbench " + args + " 2>&1";
+  Result r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  std::array<char, 512> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
+  const int status = ::pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::filesystem::path tempDir(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() / ("cdbench_cli_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+const std::string kConfigs = std::string(CDBENCH_SOURCE_DIR) + "/configs/";
+
+TEST(Cli, Env3RunWritesFramesTablesAndMetaWithNoFalseNegatives) {
+  const auto out = tempDir("env3");
+  const auto r = runCdbench("run " + kConfigs + "env3.yaml --strategies cullide --objects 20 "
+                            "--frames 4 --repeats 1 --resolutions 128 --quiet --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* f : {"frames.csv", "tables.csv", "tables.md", "meta.json"})
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  const auto rows = cdb::readFrameCsv(out / "frames.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.strategy, "cullide");
+    EXPECT_EQ(row.objects, 20);
+    EXPECT_EQ(row.falseNegatives, 0u);
+    EXPECT_GT(row.queries, 0u);
+  }
+  std::ifstream metaFile(out / "meta.json");
+  const auto meta = nlohmann::json::parse(metaFile);
+  EXPECT_FALSE(meta["gl"]["renderer"].get<std::string>().empty());
+  EXPECT_FALSE(meta["machine"]["git_commit"].get<std::string>().empty());
+  EXPECT_EQ(meta["config"]["environment"], "env3");
+}
+
+TEST(Cli, MalformedConfigExitsTwoWithOneLine) {
+  const auto dir = tempDir("bad");
+  const auto bad = dir / "bad.yaml";
+  std::ofstream(bad) << "environment: env1\nbodies: [\n";
+  const auto r = runCdbench("run " + bad.string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find("bad.yaml"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "frames.csv"));
+}
+
+TEST(Cli, UnknownStrategyExitsTwoNamingIt) {
+  const auto r = runCdbench("run " + kConfigs + "env3.yaml --strategies nosuch --out " +
+                            tempDir("unknown").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("nosuch"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cullide"), std::string::npos) << r.output;
+}
+
+TEST(Cli, InfoPrintsTheRenderer) {
+  const auto r = runCdbench("info --gl surfaceless");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("GL renderer:"), std::string::npos) << r.output;
+}
+
+}  // namespace

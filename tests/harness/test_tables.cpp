@@ -1,0 +1,87 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "harness/CdTimeTables.h"
+#include "harness/FrameCsv.h"
+#include "harness/TruthComparison.h"
+
+namespace cdb {
+namespace {
+
+FrameRecord row(std::string strategy, int res, int objects, double ms) {
+  FrameRecord r;
+  r.environment = "env3";
+  r.strategy = std::move(strategy);
+  r.resolution = res;
+  r.objects = objects;
+  r.cdMs = ms;
+  r.sets = 2;
+  return r;
+}
+
+TEST(CdTimeTables, AverageAndMaximumPerStrategyAndColumn) {
+  const std::vector<FrameRecord> frames = {row("cullide", 800, 50, 1.0), row("cullide", 800, 50, 3.0),
+                                           row("cullide", 800, 75, 5.0), row("ours", 800, 50, 0.5)};
+  const auto cells = summariseCdTimes(frames);
+  ASSERT_EQ(cells.size(), 3u);
+  EXPECT_EQ(cells[0].strategy, "cullide");
+  EXPECT_EQ(cells[0].objects, 50);
+  EXPECT_DOUBLE_EQ(cells[0].averageMs, 2.0);
+  EXPECT_DOUBLE_EQ(cells[0].maximumMs, 3.0);
+  EXPECT_EQ(cells[0].frames, 2u);
+  EXPECT_EQ(cells[1].objects, 75);
+  EXPECT_EQ(cells[2].strategy, "ours");
+
+  const std::string md = cdTimeTablesMarkdown(cells);
+  // Object counts vary, so they are the columns (the shape of Table 4.3).
+  EXPECT_NE(md.find("| strategy | 50 | 75 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| cullide | 2.0000 | 5.0000 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| ours | 0.5000 |  |"), std::string::npos) << md;
+}
+
+TEST(FrameCsv, RoundTripsEveryColumn) {
+  FrameRecord r = row("cullide", 256, 12, 4.25);
+  r.repeat = 3;
+  r.frame = 17;
+  r.cullMs = 4.0;
+  r.exactMs = 0.25;
+  r.pcsSize = 5;
+  r.queries = 1234;
+  r.draws = 99;
+  r.trianglesDrawn = 77777;
+  r.falseNegatives = 1;
+  const auto file = std::filesystem::temp_directory_path() / "cdbench_frames_roundtrip.csv";
+  {
+    std::ofstream out(file);
+    writeFrameCsvHeader(out);
+    writeFrameCsvRow(out, r);
+  }
+  const auto rows = readFrameCsv(file);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].strategy, "cullide");
+  EXPECT_EQ(rows[0].resolution, 256);
+  EXPECT_EQ(rows[0].repeat, 3);
+  EXPECT_EQ(rows[0].frame, 17);
+  EXPECT_DOUBLE_EQ(rows[0].cdMs, 4.25);
+  EXPECT_EQ(rows[0].queries, 1234u);
+  EXPECT_EQ(rows[0].trianglesDrawn, 77777u);
+  EXPECT_EQ(rows[0].falseNegatives, 1u);
+  std::filesystem::remove(file);
+}
+
+TEST(TruthComparison, CountsMissesSplitsAndExtras) {
+  const std::vector<ObjectPair> truth = {{0, 1}, {2, 3}, {4, 5}};
+  const std::vector<ObjectPair> found = {{0, 1}, {1, 2}};
+  PotentiallyCollidingSets sets(2);
+  sets[0].members = {{0, {}}, {1, {}}, {2, {}}};
+  sets[1].members = {{3, {}}};  // 2 and 3 split across sets; 4 and 5 pruned
+  const auto c = compareWithTruth(truth, found, sets, 6);
+  EXPECT_EQ(c.falseNegatives, 2u);
+  EXPECT_EQ(c.falsePositives, 1u);
+  EXPECT_EQ(c.cullingMisses, 2u);
+}
+
+}  // namespace
+}  // namespace cdb
