@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs the Debian packages cdbench needs, only those missing. Non-interactive, idempotent;
+# uses sudo only when not root.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  libode-dev libeigen3-dev libassimp-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libgmp-dev
+  libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3 python3-matplotlib
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  sudo_cmd=(sudo)
+fi
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
