@@ -1,0 +1,190 @@
+#include "scenes/MeshLoader.h"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include "core/Errors.h"
+
+namespace cdb {
+namespace {
+
+// Vertices are joined on their exact position only; assimp's own joining also compares normals
+// and texture coordinates, which collision detection does not use.
+struct PositionKey {
+  std::array<float, 3> p;
+  bool operator==(const PositionKey& o) const { return p == o.p; }
+};
+struct PositionHash {
+  std::size_t operator()(const PositionKey& k) const {
+    std::array<std::uint32_t, 3> bits;
+    std::memcpy(bits.data(), k.p.data(), sizeof bits);
+    std::size_t h = 1469598103934665603ull;
+    for (auto b : bits) h = (h ^ b) * 1099511628211ull;
+    return h;
+  }
+};
+
+class MeshMerger {
+ public:
+  MeshMerger(const aiScene& scene, const std::string& file) : scene_(scene), file_(file) {}
+
+  void addNode(const aiNode& node, const aiMatrix4x4& parent) {
+    const aiMatrix4x4 transform = parent * node.mTransformation;
+    for (unsigned m = 0; m < node.mNumMeshes; ++m) addMesh(*scene_.mMeshes[node.mMeshes[m]], transform);
+    for (unsigned c = 0; c < node.mNumChildren; ++c) addNode(*node.mChildren[c], transform);
+  }
+
+  void addMesh(const aiMesh& in, const aiMatrix4x4& transform) {
+    std::vector<std::uint32_t> index(in.mNumVertices);
+    for (unsigned v = 0; v < in.mNumVertices; ++v) {
+      const aiVector3D p = transform * in.mVertices[v];
+      // +0.0f turns -0 into +0 so both join.
+      const PositionKey key{{p.x + 0.0f, p.y + 0.0f, p.z + 0.0f}};
+      const auto [it, inserted] = ids_.try_emplace(key, std::uint32_t(mesh_.vertices.size()));
+      if (inserted) mesh_.vertices.emplace_back(key.p[0], key.p[1], key.p[2]);
+      index[v] = it->second;
+    }
+    for (unsigned f = 0; f < in.mNumFaces; ++f) {
+      const aiFace& face = in.mFaces[f];
+      if (face.mNumIndices != 3) {
+        ++dropped_.nonTriangleFaces;
+        continue;
+      }
+      Triangle t{};
+      for (int k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= in.mNumVertices) {
+          throw InputError(file_ + ": expected vertex indices below " +
+                           std::to_string(in.mNumVertices) + ", got " +
+                           std::to_string(face.mIndices[k]));
+        }
+        t[k] = index[face.mIndices[k]];
+      }
+      if (isDegenerate(t)) {
+        ++dropped_.degenerateTriangles;
+        continue;
+      }
+      mesh_.triangles.push_back(t);
+    }
+  }
+
+  LoadedMesh finish() && {
+    dropUnusedVertices();
+    return {std::move(mesh_), dropped_};
+  }
+
+ private:
+  [[nodiscard]] bool isDegenerate(const Triangle& t) const {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
+    // Float coordinates subtract and multiply exactly in double, so collinear vertices give an
+    // exact zero here: such a triangle has no interior and no normal for the exact tests.
+    const Eigen::Vector3d a = mesh_.vertices[t[0]].cast<double>();
+    const Eigen::Vector3d b = mesh_.vertices[t[1]].cast<double>();
+    const Eigen::Vector3d c = mesh_.vertices[t[2]].cast<double>();
+    return (b - a).cross(c - a).squaredNorm() == 0.0;
+  }
+
+  // Bounds and normalisation must see only what is drawn and tested.
+  void dropUnusedVertices() {
+    constexpr auto kUnused = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> remap(mesh_.vertices.size(), kUnused);
+    std::vector<Eigen::Vector3f> kept;
+    kept.reserve(mesh_.vertices.size());
+    for (auto& t : mesh_.triangles) {
+      for (auto& i : t) {
+        if (remap[i] == kUnused) {
+          remap[i] = std::uint32_t(kept.size());
+          kept.push_back(mesh_.vertices[i]);
+        }
+        i = remap[i];
+      }
+    }
+    dropped_.unusedVertices = mesh_.vertices.size() - kept.size();
+    mesh_.vertices = std::move(kept);
+  }
+
+  const aiScene& scene_;
+  const std::string& file_;
+  Mesh mesh_;
+  DroppedGeometry dropped_;
+  std::unordered_map<PositionKey, std::uint32_t, PositionHash> ids_;
+};
+
+void checkFinite(const aiScene& scene, const std::string& file) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiVector3D& p = mesh.mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        throw InputError(file + ": vertex " + std::to_string(v) + " of mesh " + std::to_string(m) +
+                         ": expected finite coordinates, got (" + std::to_string(p.x) + ", " +
+                         std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+LoadedMesh loadMesh(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code ec;
+  // assimp calls an empty file "too small" or "empty" depending on the format; say what it means.
+  if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 && !ec) {
+    throw InputError(name + ": mesh has no triangles (the file is empty)");
+  }
+  Assimp::Importer importer;
+  const aiScene* scene =
+      importer.ReadFile(name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  if (scene == nullptr) {
+    throw InputError(name + ": cannot load mesh: " + importer.GetErrorString());
+  }
+  checkFinite(*scene, name);
+
+  MeshMerger merger(*scene, name);
+  if (scene->mRootNode != nullptr) {
+    merger.addNode(*scene->mRootNode, aiMatrix4x4());
+  } else {
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) merger.addMesh(*scene->mMeshes[m], aiMatrix4x4());
+  }
+  LoadedMesh loaded = std::move(merger).finish();
+  loaded.mesh.name = file.stem().string();
+
+  if (loaded.mesh.triangles.empty()) {
+    throw InputError(name + ": mesh has no triangles" +
+                     (loaded.dropped.degenerateTriangles
+                          ? " (all " + std::to_string(loaded.dropped.degenerateTriangles) +
+                                " are degenerate)"
+                          : std::string()));
+  }
+  if (loaded.dropped.degenerateTriangles > 0) {
+    std::cerr << "warning: " << name << ": dropped " << loaded.dropped.degenerateTriangles
+              << " degenerate triangle(s) (repeated vertex or zero area)\n";
+  }
+  return loaded;
+}
+
+void normaliseMesh(Mesh& mesh, double longestSide) {
+  if (!(longestSide > 0) || !std::isfinite(longestSide)) {
+    throw InputError(mesh.name + ": expected a mesh size > 0, got " + std::to_string(longestSide));
+  }
+  const Eigen::AlignedBox3d box = mesh.bounds();
+  const double extent = box.isEmpty() ? 0.0 : box.sizes().maxCoeff();
+  if (!(extent > 0)) {
+    throw InputError(mesh.name + ": expected a mesh with a non-zero extent, got a single point");
+  }
+  const Eigen::Vector3d centre = box.center();
+  const double scale = longestSide / extent;
+  for (auto& v : mesh.vertices) v = ((v.cast<double>() - centre) * scale).cast<float>();
+}
+
+}  // namespace cdb
