@@ -1,0 +1,113 @@
+#include "culling/visibility/GlSceneBuffers.h"
+
+#include <algorithm>
+#include <string>
+
+#include "core/Errors.h"
+#include "culling/visibility/OcclusionShaders.h"
+
+namespace cdb {
+
+namespace {
+
+Mesh unitCube() {
+  Mesh cube;
+  cube.name = "unit cube";
+  for (int i = 0; i < 8; ++i)
+    cube.vertices.emplace_back((i & 1) ? 1.f : -1.f, (i & 2) ? 1.f : -1.f, (i & 4) ? 1.f : -1.f);
+  // Two triangles per face; winding does not matter (no face culling).
+  cube.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                    {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  return cube;
+}
+
+}  // namespace
+
+void GlSceneBuffers::attach(const SceneGeometry& scene) {
+  std::vector<const Mesh*> all;
+  for (const Mesh& m : scene.meshes) all.push_back(&m);
+  const Mesh cube = unitCube();
+  all.push_back(&cube);
+
+  std::size_t vertexCount = 0, indexCount = 0;
+  for (const Mesh* m : all) vertexCount += m->vertices.size(), indexCount += 3 * m->triangles.size();
+  if (vertexCount > 0x7fffffffu || indexCount > 0xffffffffu)
+    throw RunError("the scene is too large for 32-bit vertex indices");
+
+  std::vector<float> vertexData;
+  std::vector<std::uint32_t> indexData;
+  vertexData.reserve(3 * vertexCount);
+  indexData.reserve(indexCount);
+  meshes_.clear();
+  for (const Mesh* m : all) {
+    GlMeshSlot slot;
+    slot.baseVertex = static_cast<GLint>(vertexData.size() / 3);
+    slot.firstIndex = static_cast<std::uint32_t>(indexData.size());
+    slot.triangleCount = static_cast<std::uint32_t>(m->triangles.size());
+    for (const auto& v : m->vertices) vertexData.insert(vertexData.end(), {v.x(), v.y(), v.z()});
+    for (const Triangle& t : m->triangles) {
+      for (std::uint32_t i : t) {
+        if (i >= m->vertices.size())
+          throw InputError("mesh '" + m->name + "' has a triangle index " + std::to_string(i) +
+                           " beyond its " + std::to_string(m->vertices.size()) + " vertices");
+        indexData.push_back(i);
+      }
+    }
+    meshes_.push_back(slot);
+  }
+  objectMesh_.clear();
+  for (const SceneObject& o : scene.objects) {
+    if (o.mesh >= scene.meshes.size())
+      throw InputError("scene object uses mesh " + std::to_string(o.mesh) + " of " +
+                       std::to_string(scene.meshes.size()));
+    objectMesh_.push_back(o.mesh);
+  }
+
+  GLuint name = 0;
+  glCreateBuffers(1, &name);
+  vertices_ = GlBuffer(name);
+  glNamedBufferStorage(vertices_.get(), static_cast<GLsizeiptr>(vertexData.size() * sizeof(float)),
+                       vertexData.data(), 0);
+  glCreateBuffers(1, &name);
+  indices_ = GlBuffer(name);
+  glNamedBufferStorage(indices_.get(), static_cast<GLsizeiptr>(indexData.size() * sizeof(std::uint32_t)),
+                       indexData.data(), 0);
+  glCreateBuffers(1, &name);
+  models_ = GlBuffer(name);
+  // Identity poses until the first frame, so the buffer is never unbacked.
+  modelScratch_.assign(16 * std::max<std::size_t>(objectMesh_.size(), 1), 0.f);
+  for (std::size_t o = 0; o < modelScratch_.size() / 16; ++o)
+    for (int i = 0; i < 4; ++i) modelScratch_[16 * o + 5 * i] = 1.f;
+  glNamedBufferData(models_.get(), static_cast<GLsizeiptr>(modelScratch_.size() * sizeof(float)),
+                    modelScratch_.data(), GL_DYNAMIC_DRAW);
+
+  glCreateVertexArrays(1, &name);
+  vao_ = GlVertexArray(name);
+  glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, 3 * sizeof(float));
+  glVertexArrayAttribFormat(vao_.get(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(vao_.get(), 0, 0);
+  glEnableVertexArrayAttrib(vao_.get(), 0);
+  glVertexArrayElementBuffer(vao_.get(), indices_.get());
+}
+
+void GlSceneBuffers::uploadPoses(std::span<const Pose> poses) {
+  if (poses.size() != objectMesh_.size())
+    throw RunError("got " + std::to_string(poses.size()) + " poses for a scene of " +
+                   std::to_string(objectMesh_.size()) + " objects");
+  modelScratch_.resize(16 * std::max<std::size_t>(poses.size(), 1));
+  float* out = modelScratch_.data();
+  for (const Pose& pose : poses) {
+    const Eigen::Matrix4f m = pose.matrix().cast<float>();
+    std::copy(m.data(), m.data() + 16, out);  // column-major, as GLSL's mat4
+    out += 16;
+  }
+  glNamedBufferData(models_.get(), static_cast<GLsizeiptr>(modelScratch_.size() * sizeof(float)),
+                    modelScratch_.data(), GL_DYNAMIC_DRAW);
+}
+
+void GlSceneBuffers::bind() const {
+  glBindVertexArray(vao_.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kModelMatrixBinding, models_.get());
+}
+
+}  // namespace cdb

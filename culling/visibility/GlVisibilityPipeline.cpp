@@ -1,0 +1,138 @@
+#include "culling/visibility/GlVisibilityPipeline.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "core/Errors.h"
+#include "render/HeadlessGlContext.h"
+
+namespace cdb {
+
+namespace u = occlusion_uniform;
+
+GlVisibilityPipeline::GlVisibilityPipeline(HeadlessGlContext& context) {
+  context.makeCurrent();
+  rawProgram_ = makeRawOcclusionProgram();
+  conservativeProgram_ = makeConservativeOcclusionProgram();
+  GLint renderbufferMax = 0, viewportMax[2] = {0, 0};
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbufferMax);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewportMax);
+  maxResolution_ = std::min({renderbufferMax, viewportMax[0], viewportMax[1]});
+  GLuint name = 0;
+  glCreateFramebuffers(1, &name);
+  framebuffer_ = GlFramebuffer(name);
+  // Depth only: nothing is shaded into colour.
+  glNamedFramebufferDrawBuffer(framebuffer_.get(), GL_NONE);
+  glNamedFramebufferReadBuffer(framebuffer_.get(), GL_NONE);
+}
+
+void GlVisibilityPipeline::setConservative(bool conservative) {
+  if (conservative == conservative_) return;
+  conservative_ = conservative;
+  if (inPass_) applyPassState();
+}
+
+void GlVisibilityPipeline::setRawDepthOffset(double ndcOffset) {
+  rawDepthOffset_ = ndcOffset;
+  if (inPass_) applyPassState();
+}
+
+void GlVisibilityPipeline::ensureTarget(int resolution) {
+  if (resolution == targetResolution_) return;
+  GLuint name = 0;
+  glCreateRenderbuffers(1, &name);
+  GlRenderbuffer depth(name);
+  glNamedRenderbufferStorage(depth.get(), GL_DEPTH_COMPONENT32F, resolution, resolution);
+  glNamedFramebufferRenderbuffer(framebuffer_.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
+  const GLenum status = glCheckNamedFramebufferStatus(framebuffer_.get(), GL_DRAW_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", status);
+    throw RunError("the depth framebuffer of " + std::to_string(resolution) + "x" +
+                   std::to_string(resolution) + " is incomplete (status " + code + ")");
+  }
+  depth_ = std::move(depth);
+  targetResolution_ = resolution;
+}
+
+void GlVisibilityPipeline::beginPass(const DepthPassSetup& setup) {
+  if (!buffers_.attached()) throw RunError("a visibility pass began before a scene was attached");
+  if (setup.resolution < 1 || setup.resolution > maxResolution_)
+    throw InputError("resolution " + std::to_string(setup.resolution) + " is outside 1.." +
+                     std::to_string(maxResolution_) + " (the GL's largest framebuffer)");
+  ensureTarget(setup.resolution);
+  setup_ = setup;
+  inPass_ = true;
+  applyPassState();
+  if (setup.clear) {
+    glDepthMask(GL_TRUE);  // clears obey the depth write mask
+    const auto value = static_cast<GLfloat>(setup.clearDepth);
+    glClearBufferfv(GL_DEPTH, 0, &value);
+    role_ = DrawRole::None;
+  }
+}
+
+void GlVisibilityPipeline::applyPassState() {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_.get());
+  glViewport(0, 0, setup_.resolution, setup_.resolution);
+  glEnable(GL_DEPTH_TEST);
+  // Geometry beyond the near or far plane is clamped to it instead of being clipped away.
+  glEnable(GL_DEPTH_CLAMP);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glDepthRange(setup_.depthNear, setup_.depthFar);
+  buffers_.bind();
+  const Eigen::Matrix4f worldToScreen = setup_.worldToScreen.cast<float>();
+  const Eigen::Matrix4f worldToClip = setup_.worldToClip.cast<float>();
+  if (conservative_) {
+    glUseProgram(conservativeProgram_.get());
+    glUniformMatrix4fv(u::kWorldTo, 1, GL_FALSE, worldToScreen.data());
+    const double scale = setup_.depthFar - setup_.depthNear;
+    glUniform4f(u::kDepthMap, static_cast<float>(setup_.depthNear), static_cast<float>(scale),
+                static_cast<float>(scale < 0 ? -setup_.depthEpsilon : setup_.depthEpsilon), 0.f);
+    glUniform2f(u::kDepthClamp, static_cast<float>(std::min(setup_.depthNear, setup_.depthFar)),
+                static_cast<float>(std::max(setup_.depthNear, setup_.depthFar)));
+    glUniform1f(u::kGrowPx, static_cast<float>(0.5 + setup_.coverageMarginPx));
+    glUniform1f(u::kResolution, static_cast<float>(setup_.resolution));
+  } else {
+    glUseProgram(rawProgram_.get());
+    glUniformMatrix4fv(u::kWorldTo, 1, GL_FALSE, worldToClip.data());
+  }
+  role_ = DrawRole::None;
+  object_ = ~ObjectId{0};
+  localIdentity_ = false;
+}
+
+void GlVisibilityPipeline::applyRole(DrawRole role) {
+  const bool reversed = setup_.reversed();
+  if (role == DrawRole::Test) {
+    // At or behind what is stored = occluded; nothing of the test is stored.
+    glDepthMask(GL_FALSE);
+    glDepthFunc(reversed ? GL_LEQUAL : GL_GEQUAL);
+  } else {
+    glDepthMask(GL_TRUE);
+    glDepthFunc(reversed ? GL_GREATER : GL_LESS);
+  }
+  if (conservative_)
+    glUniform1f(u::kSide, role == DrawRole::Test ? 1.f : -1.f);
+  else
+    glUniform1f(u::kNdcOffset, role == DrawRole::Test ? static_cast<float>(rawDepthOffset_) : 0.f);
+  role_ = role;
+}
+
+void GlVisibilityPipeline::applyLocal(const Eigen::Matrix4f& local, bool identity) {
+  glUniformMatrix4fv(u::kLocal, 1, GL_FALSE, local.data());
+  localIdentity_ = identity;
+}
+
+std::vector<float> GlVisibilityPipeline::readDepth() const {
+  std::vector<float> depth(static_cast<std::size_t>(targetResolution_) * targetResolution_);
+  if (depth.empty()) return depth;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.get());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, targetResolution_, targetResolution_, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  return depth;
+}
+
+}  // namespace cdb

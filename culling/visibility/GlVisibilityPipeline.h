@@ -1,0 +1,105 @@
+#pragma once
+// The GL side of visibility tests: the depth-only framebuffer, the two programs, the resident scene
+// and the query pool, with the state a draw needs cached so that a stream of tests and writes makes
+// no redundant GL calls. GlOcclusionQueryBackend puts the VisibilityBackend contract on top of it;
+// GlDrawFloor replays recorded work on it with nothing else around.
+//
+// One pipeline draws at a time on a context: beginPass re-establishes every piece of GL state it
+// relies on, and within a pass nothing else may draw on the context.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "culling/visibility/DepthPassSetup.h"
+#include "culling/visibility/GlQueryPool.h"
+#include "culling/visibility/GlSceneBuffers.h"
+#include "culling/visibility/OcclusionShaders.h"
+#include "render/GlHandle.h"
+
+namespace cdb {
+
+class HeadlessGlContext;
+
+enum class DrawRole : std::uint8_t { None, Test, Write };
+
+class GlVisibilityPipeline {
+ public:
+  // Compiles the programs in `context` and makes it current.
+  explicit GlVisibilityPipeline(HeadlessGlContext& context);
+
+  void setConservative(bool conservative);
+  void setRawDepthOffset(double ndcOffset);
+  [[nodiscard]] bool conservative() const { return conservative_; }
+
+  void attach(const SceneGeometry& scene) { buffers_.attach(scene); }
+  void uploadPoses(std::span<const Pose> poses) { buffers_.uploadPoses(poses); }
+  [[nodiscard]] const GlSceneBuffers& buffers() const { return buffers_; }
+
+  // Binds the framebuffer (re-created when the resolution changes), viewport, depth range and
+  // programs for `setup`, and clears when it says so. Throws InputError on a resolution the GL
+  // cannot render at.
+  void beginPass(const DepthPassSetup& setup);
+  [[nodiscard]] bool inPass() const { return inPass_; }
+  [[nodiscard]] int maxResolution() const { return maxResolution_; }
+
+  void setRole(DrawRole role) {
+    if (role != role_) applyRole(role);
+  }
+  void setObject(ObjectId object) {
+    if (object != object_) {
+      glUniform1i(occlusion_uniform::kObject, static_cast<GLint>(object));
+      object_ = object;
+    }
+  }
+  void setLocalIdentity() {
+    if (!localIdentity_) applyLocal(Eigen::Matrix4f::Identity(), true);
+  }
+  void setLocal(const Eigen::Matrix4f& local) { applyLocal(local, false); }
+
+  void draw(const GlMeshSlot& slot, std::uint32_t firstTriangle, std::uint32_t triangleCount) {
+    glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(3 * triangleCount), GL_UNSIGNED_INT,
+                             indexOffset(slot, firstTriangle), slot.baseVertex);
+  }
+  // One draw of several index runs of the same mesh.
+  void drawRuns(std::span<const GLsizei> indexCounts, std::span<const void* const> offsets,
+                std::span<const GLint> baseVertices) {
+    glMultiDrawElementsBaseVertex(GL_TRIANGLES, indexCounts.data(), GL_UNSIGNED_INT, offsets.data(),
+                                  static_cast<GLsizei>(indexCounts.size()),
+                                  const_cast<GLint*>(baseVertices.data()));
+  }
+
+  std::uint32_t beginQuery() { return queries_.begin(); }
+  void endQuery() { queries_.end(); }
+  [[nodiscard]] std::size_t pendingQueries() const { return queries_.pending(); }
+  void fetch(std::vector<std::uint8_t>& fullyVisible) { queries_.fetch(fullyVisible); }
+
+  // The depth buffer as stored, row by row from the bottom (for tests and debugging; it waits).
+  [[nodiscard]] std::vector<float> readDepth() const;
+
+ private:
+  void applyPassState();
+  void applyRole(DrawRole role);
+  void applyLocal(const Eigen::Matrix4f& local, bool identity);
+  void ensureTarget(int resolution);
+
+  GlProgramName rawProgram_, conservativeProgram_;
+  GlFramebuffer framebuffer_;
+  GlRenderbuffer depth_;
+  int targetResolution_ = 0;
+  int maxResolution_ = 0;
+  GlSceneBuffers buffers_;
+  GlQueryPool queries_;
+
+  bool conservative_ = true;
+  double rawDepthOffset_ = 0.0;
+  DepthPassSetup setup_;
+  bool inPass_ = false;
+  // Cached draw state; reset by every pass.
+  DrawRole role_ = DrawRole::None;
+  ObjectId object_ = ~ObjectId{0};
+  bool localIdentity_ = false;
+};
+
+}  // namespace cdb

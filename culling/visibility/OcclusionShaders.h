@@ -1,0 +1,28 @@
+#pragma once
+// The programs the occlusion-query backend draws with: plain rasterisation (the thesis' raw mode)
+// and conservative rasterisation (Hasselgren, Akenine-Moller and Ohlsson, "Conservative
+// Rasterization", GPU Gems 2, ch. 42) with conservative depth.
+#include "render/GlHandle.h"
+
+namespace cdb {
+
+// Uniform locations shared by both programs' sources (explicit, so no look-ups are needed).
+namespace occlusion_uniform {
+inline constexpr GLint kObject = 0;       // int: index into the model-matrix buffer
+inline constexpr GLint kLocal = 1;        // mat4: local frame of the drawn piece (a box) or identity
+inline constexpr GLint kWorldTo = 2;      // mat4: world -> clip (raw) or world -> screen (conservative)
+inline constexpr GLint kNdcOffset = 3;    // float, raw: NDC depth offset of the draw
+inline constexpr GLint kDepthMap = 4;     // vec4, conservative: bias, scale, signed epsilon, 0
+inline constexpr GLint kDepthClamp = 5;   // vec2, conservative: the pass' stored-depth range
+inline constexpr GLint kSide = 6;         // float, conservative: -1 write nearest, +1 test farthest
+inline constexpr GLint kGrowPx = 7;       // float, conservative: half pixel plus margin
+inline constexpr GLint kResolution = 8;   // float, conservative: pixels across the buffer
+}  // namespace occlusion_uniform
+
+// Binding point of the model-matrix shader storage buffer.
+inline constexpr GLuint kModelMatrixBinding = 0;
+
+[[nodiscard]] GlProgramName makeRawOcclusionProgram();
+[[nodiscard]] GlProgramName makeConservativeOcclusionProgram();
+
+}  // namespace cdb
