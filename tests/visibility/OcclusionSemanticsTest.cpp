@@ -1,0 +1,168 @@
+// What a fully-visible test means, on the GL backend, in both modes: an object behind what was
+// written is not fully visible, one in front or beside it is; the DepthUse passes; boxes.
+#include <gtest/gtest.h>
+
+#include "core/Errors.h"
+#include "tests/visibility/GlTestSupport.h"
+
+namespace cdb {
+namespace {
+
+using test::squareMesh;
+using test::wholeOf;
+
+struct ModeName {
+  std::string operator()(const testing::TestParamInfo<bool>& info) const {
+    return info.param ? "Conservative" : "Raw";
+  }
+};
+
+class OcclusionSemantics : public testing::TestWithParam<bool> {
+ protected:
+  // Squares of half size 1: A at z = 0, B at z = 2 (behind A along +z), C at z = -2 (in front),
+  // D beside A in the image (x = 5), E coplanar with A.
+  void SetUp() override {
+    scene_ = test::sceneOf({squareMesh(0, 0, 0, 1), squareMesh(0, 0, 2, 1), squareMesh(0, 0, -2, 1),
+                            squareMesh(5, 0, 0, 1), squareMesh(0.5f, 0, 0, 1)});
+    backend_ = std::make_unique<GlOcclusionQueryBackend>(test::sharedGlContext(),
+                                                         VisibilityOptions{GetParam(), 1e-5});
+    backend_->attachScene(scene_);
+    backend_->setPoses(test::identityPoses(scene_.objectCount()));
+  }
+
+  ViewSpec view(const Eigen::Vector3d& direction, int resolution = 64) const {
+    return {direction, Aabb(Eigen::Vector3d(-2, -2, -3), Eigen::Vector3d(7, 2, 3)), resolution};
+  }
+
+  // Writes `written` then tests each of `tested` in one Fresh pass; returns the answers.
+  std::vector<std::uint8_t> afterWriting(ObjectId written, std::vector<ObjectId> tested,
+                                         const Eigen::Vector3d& direction = Eigen::Vector3d::UnitZ()) {
+    backend_->beginPass(view(direction), DepthUse::Fresh);
+    backend_->writeRange(wholeOf(scene_, written));
+    for (ObjectId o : tested) backend_->queryRange(wholeOf(scene_, o));
+    std::vector<std::uint8_t> answers;
+    backend_->fetchResults(answers);
+    return answers;
+  }
+
+  SceneGeometry scene_;
+  std::unique_ptr<GlOcclusionQueryBackend> backend_;
+};
+
+TEST_P(OcclusionSemantics, BehindIsOccludedFrontAndBesideAreVisible) {
+  const auto answers = afterWriting(0, {1, 2, 3});
+  ASSERT_EQ(answers.size(), 3u);
+  EXPECT_EQ(answers[0], 0) << "B behind A";
+  EXPECT_EQ(answers[1], 1) << "C in front of A";
+  EXPECT_EQ(answers[2], 1) << "D beside A";
+}
+
+TEST_P(OcclusionSemantics, ViewDirectionDecidesWhatIsBehind) {
+  const auto answers = afterWriting(0, {1, 2}, -Eigen::Vector3d::UnitZ());
+  EXPECT_EQ(answers[0], 1) << "B is in front when looking along -z";
+  EXPECT_EQ(answers[1], 0) << "C is behind when looking along -z";
+}
+
+TEST_P(OcclusionSemantics, CoplanarOverlapIsNotFullyVisible) {
+  EXPECT_EQ(afterWriting(0, {4})[0], 0);
+}
+
+TEST_P(OcclusionSemantics, NothingWrittenMeansFullyVisible) {
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  for (ObjectId o = 0; o < scene_.objectCount(); ++o) backend_->queryRange(wholeOf(scene_, o));
+  std::vector<std::uint8_t> answers;
+  backend_->fetchResults(answers);
+  EXPECT_EQ(answers, std::vector<std::uint8_t>(scene_.objectCount(), 1));
+}
+
+TEST_P(OcclusionSemantics, SharedPassesShareOneClear) {
+  // Pass 1 writes A and C; pass 2 (no clear) must not see them, and sees its own writes.
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::SharedFirst);
+  backend_->writeRange(wholeOf(scene_, 0));
+  backend_->writeRange(wholeOf(scene_, 2));
+  const QueryIndex firstPassB = backend_->queryRange(wholeOf(scene_, 1));
+  backend_->beginPass(view(-Eigen::Vector3d::UnitZ()), DepthUse::SharedSecond);
+  const QueryIndex secondPassA = backend_->queryRange(wholeOf(scene_, 0));
+  const QueryIndex secondPassB = backend_->queryRange(wholeOf(scene_, 1));
+  backend_->writeRange(wholeOf(scene_, 1));  // B is nearest along -z
+  const QueryIndex behindB = backend_->queryRange(wholeOf(scene_, 0));
+  const QueryIndex beside = backend_->queryRange(wholeOf(scene_, 3));
+  std::vector<std::uint8_t> answers;
+  backend_->fetchResults(answers);
+  ASSERT_EQ(answers.size(), 5u);
+  EXPECT_EQ(answers[firstPassB], 0) << "pass 1: B behind A";
+  EXPECT_EQ(answers[secondPassA], 1) << "pass 2: pass-1 leftovers do not occlude";
+  EXPECT_EQ(answers[secondPassB], 1) << "pass 2: pass-1 leftovers do not occlude";
+  EXPECT_EQ(answers[behindB], 0) << "pass 2: A behind B written in pass 2";
+  EXPECT_EQ(answers[beside], 1) << "pass 2: D beside";
+  const VisibilityCounters c = backend_->counters();
+  EXPECT_EQ(c.passes, 2u);
+  EXPECT_EQ(c.depthClears, 1u);
+  EXPECT_EQ(c.queries, 5u);
+  EXPECT_EQ(c.draws, 8u);
+  EXPECT_EQ(c.fetches, 1u);
+}
+
+TEST_P(OcclusionSemantics, SharedSecondPassAloneIsRejected) {
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  EXPECT_THROW(backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::SharedSecond), RunError);
+}
+
+TEST_P(OcclusionSemantics, BoxesQueryAndWrite) {
+  OrientedBox slab;  // a thin box around A's square
+  slab.halfExtents = Eigen::Vector3d(1, 1, 0.05);
+  OrientedBox far = slab;
+  far.center = Eigen::Vector3d(0, 0, 2.5);
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  backend_->writeBox(0, slab);
+  const QueryIndex farBox = backend_->queryBox(3, far);  // object 3's frame is the world frame too
+  const QueryIndex b = backend_->queryRange(wholeOf(scene_, 1));
+  const QueryIndex c = backend_->queryRange(wholeOf(scene_, 2));
+  far.center = Eigen::Vector3d(0, 0, -2.5);
+  const QueryIndex nearBox = backend_->queryBox(1, far);
+  std::vector<std::uint8_t> answers;
+  backend_->fetchResults(answers);
+  EXPECT_EQ(answers[farBox], 0);
+  EXPECT_EQ(answers[b], 0);
+  EXPECT_EQ(answers[c], 1);
+  EXPECT_EQ(answers[nearBox], 1);
+}
+
+TEST_P(OcclusionSemantics, PosesMoveObjects) {
+  std::vector<Pose> poses = test::identityPoses(scene_.objectCount());
+  poses[1].translation = Eigen::Vector3d(5, 0, 0);  // B moves beside A
+  backend_->setPoses(poses);
+  EXPECT_EQ(afterWriting(0, {1})[0], 1);
+  poses[1].translation = Eigen::Vector3d(0, 0, 0);
+  poses[1].rotation = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX());  // B tilted, still behind
+  backend_->setPoses(poses);
+  EXPECT_EQ(afterWriting(0, {1})[0], 0);
+}
+
+TEST_P(OcclusionSemantics, WriteTrianglesIsOneDraw) {
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  const std::uint32_t second[] = {1};
+  backend_->writeTriangles(0, second);  // only the upper-left half of A
+  backend_->resetCounters();
+  const std::uint32_t both[] = {1, 0};
+  backend_->writeTriangles(0, both);
+  EXPECT_EQ(backend_->counters().draws, 1u);
+  EXPECT_EQ(backend_->counters().trianglesDrawn, 2u);
+  const std::uint32_t bad[] = {2};
+  EXPECT_THROW(backend_->writeTriangles(0, bad), RunError);
+}
+
+TEST_P(OcclusionSemantics, MisuseIsReported) {
+  EXPECT_THROW(backend_->queryRange(wholeOf(scene_, 0)), RunError) << "outside a pass";
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  EXPECT_THROW(backend_->queryRange({99, 0, 1}), RunError);
+  EXPECT_THROW(backend_->queryRange({0, 1, 5}), RunError);
+  EXPECT_THROW(backend_->beginPass(view(Eigen::Vector3d::UnitZ(), 0), DepthUse::Fresh), InputError);
+  EXPECT_THROW(backend_->beginPass(view(Eigen::Vector3d::UnitZ(), 1000000), DepthUse::Fresh), InputError);
+  EXPECT_THROW(backend_->setPoses(test::identityPoses(2)), RunError);
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, OcclusionSemantics, testing::Bool(), ModeName());
+
+}  // namespace
+}  // namespace cdb
