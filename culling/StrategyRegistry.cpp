@@ -2,6 +2,7 @@
 
 #include "core/Errors.h"
 #include "culling/strategies/Cullide.h"
+#include "culling/strategies/DepthSortedCulling.h"
 
 namespace cdb {
 
@@ -10,6 +11,8 @@ const StrategyRegistry& StrategyRegistry::builtin() {
     StrategyRegistry r;
     r.add("cullide", "CULLIDE without a hierarchy: object then triangle level, two passes, x y z",
           [](const StrategyOptions& o) { return std::make_unique<Cullide>(o); });
+    r.add("sorted", "CULLIDE's two passes in depth order, one depth clear (thesis 3.2)",
+          [](const StrategyOptions& o) { return std::make_unique<DepthSortedCulling>(o); });
     return r;
   }();
   return registry;

@@ -1,0 +1,107 @@
+#pragma once
+// A scripted oracle that decides "fully visible" from the geometry instead of a script of answers:
+// each queried or written piece stands for the world AABB of its triangles, and the queried piece
+// is fully visible iff, for every piece written earlier in the pass whose box overlaps it in the
+// image plane, it lies entirely in front (strictly nearer along the view). Views must be along an
+// axis. Exact for boxes, and conservative for any content of the boxes: pieces that touch are
+// never fully visible with respect to each other.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include "culling/SortedIntervals.h"
+#include "culling/visibility/ScriptedVisibilityOracle.h"
+
+namespace cdb::testing {
+
+class GeometricOracle {
+ public:
+  struct Answer {
+    int pass = 0;
+    ObjectId object = 0;
+    bool wholeObject = false;
+    bool fullyVisible = false;
+  };
+
+  explicit GeometricOracle(const SceneGeometry& scene)
+      : scene_(scene), oracle_([this](const OracleCall& q, std::span<const OracleCall> written) {
+          return decide(q, written);
+        }) {}
+  GeometricOracle(const GeometricOracle&) = delete;
+  GeometricOracle& operator=(const GeometricOracle&) = delete;
+
+  ScriptedVisibilityOracle& backend() { return oracle_; }
+  const std::vector<Answer>& answers() const { return answers_; }
+
+  // Objects with a whole-object query in `pass` that was not fully visible.
+  std::vector<ObjectId> hiddenObjects(int pass) const {
+    std::vector<ObjectId> out;
+    for (const auto& a : answers_)
+      if (a.pass == pass && a.wholeObject && !a.fullyVisible) out.push_back(a.object);
+    return out;
+  }
+
+  // World box of a piece of an object's mesh under the current poses.
+  Aabb pieceBox(ObjectId object, std::span<const std::uint32_t> triangles) const {
+    const Mesh& mesh = scene_.meshOf(object);
+    const Pose& pose = oracle_.poses()[object];
+    Aabb box;
+    for (std::uint32_t t : triangles)
+      for (std::uint32_t v : mesh.triangles[t]) box.extend(pose.apply(mesh.vertices[v].cast<double>()));
+    return box;
+  }
+
+ private:
+  Aabb boxOf(const OracleCall& c) const {
+    std::vector<std::uint32_t> tris;
+    if (c.kind == OracleCall::Kind::WriteTriangles) {
+      tris = c.triangles;
+    } else {
+      EXPECT_TRUE(c.kind == OracleCall::Kind::QueryRange || c.kind == OracleCall::Kind::WriteRange)
+          << "the geometric oracle decides mesh pieces only";
+      for (std::uint32_t t = 0; t < c.range.triangleCount; ++t)
+        tris.push_back(c.range.firstTriangle + t);
+    }
+    return pieceBox(c.object, tris);
+  }
+
+  Eigen::Vector3d currentDirection() const {
+    const auto& log = oracle_.log();
+    for (auto it = log.rbegin(); it != log.rend(); ++it)
+      if (it->kind == OracleCall::Kind::BeginPass) return it->view.direction;
+    ADD_FAILURE() << "query outside a pass";
+    return Eigen::Vector3d::UnitZ();
+  }
+
+  bool decide(const OracleCall& q, std::span<const OracleCall> written) {
+    const Eigen::Vector3d d = currentDirection();
+    int axis = 0;
+    d.cwiseAbs().maxCoeff(&axis);
+    EXPECT_DOUBLE_EQ(std::abs(d[axis]), 1.0) << "views must be along an axis";
+    const Aabb qb = boxOf(q);
+    const double qFar = projectAabb(qb, d).second;
+    bool visible = true;
+    for (const auto& w : written) {
+      const Aabb wb = boxOf(w);
+      bool imageOverlap = true;
+      for (int k = 0; k < 3; ++k)
+        if (k != axis && (qb.min()[k] > wb.max()[k] || wb.min()[k] > qb.max()[k])) imageOverlap = false;
+      if (imageOverlap && !(qFar < projectAabb(wb, d).first)) {
+        visible = false;
+        break;
+      }
+    }
+    const bool whole = q.range.firstTriangle == 0 &&
+                       q.range.triangleCount == scene_.meshOf(q.object).triangleCount();
+    answers_.push_back({q.pass, q.object, whole, visible});
+    return visible;
+  }
+
+  const SceneGeometry& scene_;
+  ScriptedVisibilityOracle oracle_;
+  std::vector<Answer> answers_;
+};
+
+}  // namespace cdb::testing
