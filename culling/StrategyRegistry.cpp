@@ -1,6 +1,7 @@
 #include "culling/StrategyRegistry.h"
 
 #include "core/Errors.h"
+#include "culling/strategies/CollisionIndependentSets.h"
 #include "culling/strategies/Cullide.h"
 #include "culling/strategies/DepthSortedCulling.h"
 
@@ -13,6 +14,8 @@ const StrategyRegistry& StrategyRegistry::builtin() {
           [](const StrategyOptions& o) { return std::make_unique<Cullide>(o); });
     r.add("sorted", "CULLIDE's two passes in depth order, one depth clear (thesis 3.2)",
           [](const StrategyOptions& o) { return std::make_unique<DepthSortedCulling>(o); });
+    r.add("cis", "collision-independent sets along one view axis (thesis 3.3, Algorithm 3.2)",
+          [](const StrategyOptions& o) { return std::make_unique<CollisionIndependentSets>(o); });
     return r;
   }();
   return registry;

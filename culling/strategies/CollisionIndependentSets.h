@@ -1,0 +1,61 @@
+#pragma once
+// Collision-independent sets along one view direction (thesis 3.3, Algorithm 3.2), object level:
+// the potentially colliding objects are partitioned into sets such that no two objects of
+// different sets can collide. See CollisionIndependentSets.cpp for the two passes and why the
+// partition is safe.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "culling/CullingStrategy.h"
+#include "culling/SortedIntervals.h"
+#include "culling/StrategyRegistry.h"
+#include "culling/WorldBounds.h"
+
+namespace cdb {
+
+struct CisOptions {
+  // View axis (0 = x, 1 = y, 2 = z). Unset: chosen per frame as the axis along which the object
+  // centres spread most (largest variance), where intervals overlap least and sets separate best.
+  // Pass 1 looks along +axis, so "far" is the larger coordinate.
+  std::optional<int> axis;
+};
+
+class CollisionIndependentSets final : public CullingStrategy {
+ public:
+  explicit CollisionIndependentSets(const StrategyOptions& options, CisOptions cis = {});
+
+  [[nodiscard]] std::string_view name() const override { return "cis"; }
+  void attach(const SceneGeometry& scene, VisibilityBackend& backend) override;
+  [[nodiscard]] CullingResult cull(const FrameInput& frame) override;
+
+  // What the last frame did, beyond CullingCounters.
+  struct FrameStats {
+    int axis = 0;
+    std::uint64_t sortExchanges = 0;
+    // Fully visible in pass 1 and left out of every set in pass 2.
+    std::uint64_t dropped = 0;
+    // Sets that ended with one member (nothing to collide with), not output.
+    std::uint64_t singletons = 0;
+    // Per set built in pass 1, in order: its separating surface SS, as a position in the
+    // far-to-near element order (the near end of its nearest pass-1 member).
+    std::vector<std::uint32_t> separatingSurfaces;
+  };
+  [[nodiscard]] const FrameStats& lastFrame() const { return stats_; }
+
+ private:
+  [[nodiscard]] int chooseAxis() const;
+
+  StrategyOptions options_;
+  CisOptions cis_;
+  const SceneGeometry* scene_ = nullptr;
+  VisibilityBackend* backend_ = nullptr;
+  WorldBounds bounds_;
+  std::vector<ObjectId> allObjects_;
+  std::array<SortedIntervals, 3> sorted_;  // one list per axis, kept across frames
+  FrameStats stats_;
+  std::vector<std::uint8_t> visible_;  // query answers, reused across frames
+};
+
+}  // namespace cdb
