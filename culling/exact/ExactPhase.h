@@ -2,6 +2,7 @@
 // The exact phase shared by every image-based strategy: inside each potentially colliding set,
 // sweep-and-prune on world AABBs of the members, then triangle-triangle tests (double precision,
 // robust) between the surviving member pairs, restricted to each member's triangle subset.
+#include <memory>
 #include <span>
 
 #include "core/Pose.h"
@@ -13,11 +14,18 @@ namespace cdb {
 
 class ExactPhase {
  public:
+  // Caches per-mesh data; `scene` must outlive the phase.
   explicit ExactPhase(const SceneGeometry& scene);
+  ~ExactPhase();
+  ExactPhase(ExactPhase&&) noexcept;
+  // `poses` holds one pose per scene object. An object pair found in several sets is reported
+  // once; once found colliding, later sets skip it.
   [[nodiscard]] CollisionReport run(std::span<const Pose> poses, const PotentiallyCollidingSets& sets);
 
  private:
+  struct Workspace;  // per-mesh caches and buffers reused from frame to frame
   const SceneGeometry& scene_;
+  std::unique_ptr<Workspace> work_;
 };
 
 }  // namespace cdb

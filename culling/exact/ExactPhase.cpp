@@ -1,0 +1,249 @@
+#include "culling/exact/ExactPhase.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include "culling/exact/SweepAndPrune.h"
+#include "culling/exact/TriangleTriangle.h"
+
+namespace cdb {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+// Widens a world box computed through transformAabb by more than the few ulps by which vertices
+// transformed one by one may stray outside it, so that no touching pair is pruned by rounding.
+Aabb conservative(Aabb box) {
+  if (box.isEmpty()) return box;
+  const double scale = box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff();
+  const Vec3 slack = Vec3::Constant(1e-12 * scale + 1e-300);
+  box.min() -= slack;
+  box.max() += slack;
+  return box;
+}
+
+// A member's triangles in world space, built the first time the member meets another in a set.
+struct MemberGeometry {
+  bool ready = false;
+  std::vector<Vec3> vertices;
+  std::vector<Triangle> ownTriangles;   // used when the mesh's own list does not fit
+  std::span<const Triangle> triangles;  // index into `vertices`, one per member triangle
+  std::vector<Aabb> boxes;              // world box of each member triangle
+  Aabb bounds;                          // their union: tight, unlike the set-level box
+};
+
+}  // namespace
+
+struct ExactPhase::Workspace {
+  // Per mesh, from the constructor.
+  std::vector<Aabb> meshBounds;
+  std::vector<std::vector<Aabb>> localTriangleBoxes;
+
+  // Per set and per pair; kept so that frames after the first do not allocate.
+  std::vector<Aabb> memberBoxes;
+  std::vector<IndexPair> memberPairs;
+  std::vector<MemberGeometry> members;
+  std::vector<Aabb> candidateBoxes[2];
+  std::vector<std::uint32_t> candidateTriangles[2];
+  std::vector<IndexPair> trianglePairs;
+  SweepAndPrune sweep;
+  std::vector<ObjectPair> colliding;
+  std::unordered_set<std::uint64_t> collidingKeys;
+};
+
+ExactPhase::ExactPhase(const SceneGeometry& scene)
+    : scene_(scene), work_(std::make_unique<Workspace>()) {
+  work_->meshBounds.reserve(scene.meshes.size());
+  work_->localTriangleBoxes.resize(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    work_->meshBounds.push_back(mesh.bounds());
+    auto& boxes = work_->localTriangleBoxes[m];
+    boxes.reserve(mesh.triangleCount());
+    for (const Triangle& t : mesh.triangles) {
+      Aabb box(mesh.vertices[t[0]].cast<double>());
+      box.extend(mesh.vertices[t[1]].cast<double>());
+      box.extend(mesh.vertices[t[2]].cast<double>());
+      boxes.push_back(box);
+    }
+  }
+}
+
+ExactPhase::~ExactPhase() = default;
+ExactPhase::ExactPhase(ExactPhase&&) noexcept = default;
+
+namespace {
+
+// Local box of a member's triangles (checking the subset's indices on the way).
+Aabb localBoxOf(const SetMember& member, const Aabb& meshBounds, const std::vector<Aabb>& triBoxes) {
+  if (member.allTriangles()) return meshBounds;
+  Aabb box;
+  for (std::uint32_t t : member.triangles) {
+    if (t >= triBoxes.size())
+      throw std::out_of_range("exact phase: triangle " + std::to_string(t) + " of object " +
+                              std::to_string(member.object) + " is out of range");
+    box.extend(triBoxes[t]);
+  }
+  return box;
+}
+
+// World vertices: the rotation as a matrix, applied in this exact form by the ground truth too,
+// so both run the triangle test on bit-identical coordinates.
+void transformVertices(const Mesh& mesh, const Pose& pose, std::vector<Vec3>& out) {
+  const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
+  out.resize(mesh.vertices.size());
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    out[v] = r * mesh.vertices[v].cast<double>() + pose.translation;
+}
+
+void prepare(MemberGeometry& g, const Mesh& mesh, const SetMember& member, const Pose& pose) {
+  g.ready = true;
+  const std::size_t count = member.allTriangles() ? mesh.triangleCount() : member.triangles.size();
+  if (member.allTriangles()) {
+    transformVertices(mesh, pose, g.vertices);
+    g.triangles = mesh.triangles;
+  } else if (3 * count >= mesh.vertices.size()) {
+    // A large subset: transforming every vertex once is cheaper than three per triangle.
+    transformVertices(mesh, pose, g.vertices);
+    g.ownTriangles.resize(count);
+    for (std::size_t k = 0; k < count; ++k) g.ownTriangles[k] = mesh.triangles[member.triangles[k]];
+    g.triangles = g.ownTriangles;
+  } else {
+    const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
+    g.vertices.resize(3 * count);
+    g.ownTriangles.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      const Triangle& t = mesh.triangles[member.triangles[k]];
+      for (int c = 0; c < 3; ++c)
+        g.vertices[3 * k + c] = r * mesh.vertices[t[c]].cast<double>() + pose.translation;
+      const auto base = std::uint32_t(3 * k);
+      g.ownTriangles[k] = {base, base + 1, base + 2};
+    }
+    g.triangles = g.ownTriangles;
+  }
+  g.boxes.resize(count);
+  g.bounds.setEmpty();
+  for (std::size_t k = 0; k < count; ++k) {
+    const Triangle& t = g.triangles[k];
+    Aabb box(g.vertices[t[0]]);
+    box.extend(g.vertices[t[1]]);
+    box.extend(g.vertices[t[2]]);
+    g.boxes[k] = box;
+    g.bounds.extend(box);
+  }
+}
+
+// The member triangles whose world boxes reach into `region`; returns the box around them.
+Aabb collectCandidates(const MemberGeometry& g, const Aabb& region, std::vector<Aabb>& boxes,
+                       std::vector<std::uint32_t>& triangles) {
+  boxes.clear();
+  triangles.clear();
+  Aabb reach;
+  for (std::uint32_t k = 0; k < g.boxes.size(); ++k) {
+    if (g.boxes[k].intersects(region)) {
+      boxes.push_back(g.boxes[k]);
+      triangles.push_back(k);
+      reach.extend(g.boxes[k]);
+    }
+  }
+  return reach;
+}
+
+// Keeps the candidates whose boxes reach into `region`, in place; returns the box around them.
+Aabb narrowCandidates(const Aabb& region, std::vector<Aabb>& boxes,
+                      std::vector<std::uint32_t>& triangles) {
+  std::size_t kept = 0;
+  Aabb reach;
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    if (boxes[k].intersects(region)) {
+      reach.extend(boxes[k]);
+      boxes[kept] = boxes[k];
+      triangles[kept++] = triangles[k];
+    }
+  }
+  boxes.resize(kept);
+  triangles.resize(kept);
+  return reach;
+}
+
+std::uint64_t keyOf(ObjectPair p) { return (std::uint64_t(p.a) << 32) | p.b; }
+
+}  // namespace
+
+CollisionReport ExactPhase::run(std::span<const Pose> poses, const PotentiallyCollidingSets& sets) {
+  if (poses.size() < scene_.objectCount())
+    throw std::invalid_argument("exact phase: " + std::to_string(poses.size()) + " poses for " +
+                                std::to_string(scene_.objectCount()) + " objects");
+  Workspace& w = *work_;
+  CollisionReport report;
+  w.colliding.clear();
+  w.collidingKeys.clear();
+  const bool severalSets = sets.size() > 1;
+
+  for (const PotentiallyCollidingSet& set : sets) {
+    const auto& members = set.members;
+    if (members.size() < 2) continue;
+
+    w.memberBoxes.clear();
+    for (const SetMember& m : members) {
+      const std::uint32_t mesh = scene_.objects.at(m.object).mesh;
+      const Aabb local = localBoxOf(m, w.meshBounds[mesh], w.localTriangleBoxes[mesh]);
+      w.memberBoxes.push_back(conservative(transformAabb(local, poses[m.object])));
+    }
+    w.sweep.overlaps(w.memberBoxes, w.memberPairs);
+
+    if (w.members.size() < members.size()) w.members.resize(members.size());
+    for (std::size_t k = 0; k < members.size(); ++k) w.members[k].ready = false;
+
+    for (const IndexPair& mp : w.memberPairs) {
+      const SetMember& ma = members[mp.i];
+      const SetMember& mb = members[mp.j];
+      if (ma.object == mb.object) continue;
+      const ObjectPair objects = ObjectPair::of(ma.object, mb.object);
+      if (severalSets && w.collidingKeys.contains(keyOf(objects))) continue;
+
+      MemberGeometry& ga = w.members[mp.i];
+      MemberGeometry& gb = w.members[mp.j];
+      if (!ga.ready) prepare(ga, scene_.meshOf(ma.object), ma, poses[ma.object]);
+      if (!gb.ready) prepare(gb, scene_.meshOf(mb.object), mb, poses[mb.object]);
+      ++report.pairsTested;
+
+      // Only triangles inside both members' tight world boxes can meet. Narrowing once more to
+      // the box around the other side's candidates is cheap and often shrinks both sides.
+      const Aabb common = ga.bounds.intersection(gb.bounds);
+      if (common.isEmpty()) continue;
+      const Aabb reachA =
+          collectCandidates(ga, common, w.candidateBoxes[0], w.candidateTriangles[0]);
+      if (w.candidateBoxes[0].empty()) continue;
+      const Aabb reachB =
+          collectCandidates(gb, reachA, w.candidateBoxes[1], w.candidateTriangles[1]);
+      if (w.candidateBoxes[1].empty()) continue;
+      narrowCandidates(reachB, w.candidateBoxes[0], w.candidateTriangles[0]);
+      w.sweep.overlaps(w.candidateBoxes[0], w.candidateBoxes[1], w.trianglePairs);
+
+      std::uint64_t hits = 0;
+      for (const IndexPair& tp : w.trianglePairs) {
+        const Triangle& ta = ga.triangles[w.candidateTriangles[0][tp.i]];
+        const Triangle& tb = gb.triangles[w.candidateTriangles[1][tp.j]];
+        hits += trianglesIntersect(ga.vertices[ta[0]], ga.vertices[ta[1]], ga.vertices[ta[2]],
+                                   gb.vertices[tb[0]], gb.vertices[tb[1]], gb.vertices[tb[2]]);
+      }
+      report.triangleTests += w.trianglePairs.size();
+      if (hits == 0) continue;
+      report.collidingTrianglePairs += hits;
+      w.colliding.push_back(objects);
+      if (severalSets) w.collidingKeys.insert(keyOf(objects));
+    }
+  }
+
+  std::sort(w.colliding.begin(), w.colliding.end());
+  w.colliding.erase(std::unique(w.colliding.begin(), w.colliding.end()), w.colliding.end());
+  report.collidingPairs = w.colliding;
+  return report;
+}
+
+}  // namespace cdb
