@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <functional>
 #include <string>
 #include <vector>
@@ -366,21 +367,35 @@ TEST(DynamicsContactPicker, KeepsTheDeepestAndSpreadsTheRest) {
   EXPECT_EQ(picker.pick(contacts, 4, 8).size(), 4u);
 }
 
-// Per-frame wall time of the two reference loads; run with --gtest_also_run_disabled_tests.
-double millisecondsPerFrame(const ScenarioConfig& config, int frames) {
+// Per-frame wall time of the two reference loads, with the dynamics of configs/env1.yaml and
+// configs/env3.yaml; run with --gtest_also_run_disabled_tests.
+struct FrameTime {
+  double wallMs = 0;
+  double cpuMs = 0;  // this thread's CPU time: what the wall time would be on an idle machine
+};
+
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+FrameTime timePerFrame(const ScenarioConfig& config, int frames) {
   const SceneGeometry scene = sceneFor(config);
   RigidBodySimulation simulation(config, scene, 1);
   const auto start = std::chrono::steady_clock::now();
+  const double cpuStart = threadCpuMs();
   for (int f = 0; f < frames; ++f) simulation.stepFrame();
   const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
-  return elapsed.count() / frames;
+  return {elapsed.count() / frames, (threadCpuMs() - cpuStart) / frames};
 }
 
 TEST(RigidBodyDynamics, DISABLED_FrameTimes) {
-  // env1's trough: two 8 x 8 planes at 30 degrees, 50 tori dropped in (configs/env1.yaml).
+  // env1: 50 tori dropped into a trough of two 8 x 8 planes at 30 degrees.
   ScenarioConfig trough;
   trough.dynamics.timeStep = 0.005;
   trough.dynamics.stepsPerFrame = 4;
+  trough.dynamics.frames = 400;
   trough.dynamics.friction = 0.4;
   trough.dynamics.restitution = 0.1;
   trough.dynamics.angularDamping = 0.002;
@@ -395,10 +410,24 @@ TEST(RigidBodyDynamics, DISABLED_FrameTimes) {
   drop.minGap = 0.05;
   tori.placement = drop;
   trough.bodies = {planes, tori};
-  std::printf("50 tori + 2 planes (4 steps of 5 ms a frame): %.2f ms/frame\n",
-              millisecondsPerFrame(trough, 400));
-  std::printf("200 tori in a cube (2 steps of 10 ms a frame): %.2f ms/frame\n",
-              millisecondsPerFrame(cubeScenario(200, 6.0), 300));
+
+  // env3: 200 tori in a cube of side 11 without gravity.
+  ScenarioConfig cube = cubeScenario(200, 5.5);
+  cube.dynamics.timeStep = 0.005;
+  cube.dynamics.stepsPerFrame = 4;
+  cube.dynamics.frames = 300;
+  cube.dynamics.friction = 0.3;
+  cube.dynamics.restitution = 0.8;
+  cube.bodies[0].placement->regionMin = {-4.75, -4.75, -4.75};
+  cube.bodies[0].placement->regionMax = {4.75, 4.75, 4.75};
+  cube.bodies[0].placement->minGap = 0.05;
+
+  for (const ScenarioConfig* config : {&trough, &cube}) {
+    const FrameTime t = timePerFrame(*config, config->dynamics.frames);
+    std::printf("%zu bodies, %d frames of %d steps: %.2f ms/frame wall, %.2f ms/frame CPU\n",
+                sceneFor(*config).objectCount(), config->dynamics.frames,
+                config->dynamics.stepsPerFrame, t.wallMs, t.cpuMs);
+  }
 }
 
 }  // namespace
