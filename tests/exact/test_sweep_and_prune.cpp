@@ -75,6 +75,38 @@ TEST_P(SweepAndPruneRandom, MatchesBruteForceBetweenTwoSets) {
   }
 }
 
+TEST_P(SweepAndPruneRandom, MatchesBruteForceBetweenTwoLargeSetsSweptPerCell) {
+  // Enough small boxes on both sides for the grid of cells, on a lattice of quarters so that
+  // boxes touch on cell borders too, plus a few boxes that span many cells and some outside the
+  // common region.
+  std::mt19937_64 rng(GetParam() * 7 + 1);
+  std::uniform_int_distribution<int> corner(0, 40), size(0, 2), bigSize(8, 40);
+  const auto lattice = [&](int count, int bigOnes, double shift) {
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < count; ++i) {
+      const bool big = i < bigOnes;
+      const int x = corner(rng), y = corner(rng), z = corner(rng);
+      const int w = big ? bigSize(rng) : size(rng), h = big ? bigSize(rng) : size(rng);
+      const int d = big ? bigSize(rng) : size(rng);
+      const Eigen::Vector3d lo = Eigen::Vector3d(x, y, z) * 0.25 + Eigen::Vector3d::Constant(shift);
+      boxes.emplace_back(lo, lo + Eigen::Vector3d(w, h, d) * 0.25);
+    }
+    return boxes;
+  };
+  SweepAndPrune sap;
+  std::vector<IndexPair> found;
+  for (int round = 0; round < 4; ++round) {
+    const int bigA = round % 2 == 0 ? 5 : 0, bigB = round < 2 ? 4 : 0;
+    const auto a = lattice(2500, bigA, 0.0);
+    const auto b = lattice(1800, bigB, round == 3 ? 2.0 : 0.0);
+    sap.overlaps(a, b, found);
+    std::sort(found.begin(), found.end());
+    const auto expected = bruteForce(a, b);
+    ASSERT_EQ(found, expected) << "round " << round;
+    EXPECT_GT(expected.size(), 500u);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Seeds, SweepAndPruneRandom, ::testing::Values(1u, 2u, 3u, 99u, 12345u));
 
 TEST(SweepAndPrune, TouchingBoxesOverlap) {
