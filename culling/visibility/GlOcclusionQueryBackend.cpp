@@ -112,7 +112,7 @@ void GlOcclusionQueryBackend::writeBox(ObjectId object, const OrientedBox& local
 void GlOcclusionQueryBackend::writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) {
   const GlMeshSlot& slot = checkedSlot(object);
   // Consecutive triangles become one run; all runs go in one multi-draw.
-  runCounts_.clear(), runOffsets_.clear(), runBases_.clear();
+  runs_.clear();
   for (std::size_t i = 0; i < triangles.size();) {
     const std::uint32_t first = triangles[i];
     std::uint32_t count = 1;
@@ -120,16 +120,14 @@ void GlOcclusionQueryBackend::writeTriangles(ObjectId object, std::span<const st
     if (first >= slot.triangleCount || count > slot.triangleCount - first)
       throw RunError("triangle " + std::to_string(first + count - 1) + " is outside object " +
                      std::to_string(object) + "'s " + std::to_string(slot.triangleCount));
-    runCounts_.push_back(static_cast<GLsizei>(3 * count));
-    runOffsets_.push_back(indexOffset(slot, first));
-    runBases_.push_back(slot.baseVertex);
+    runs_.push_back({first, count});
     i += count;
   }
-  if (runCounts_.empty()) return;
+  if (runs_.empty()) return;
   pipeline_.setRole(DrawRole::Write);
   pipeline_.setObject(object);
   pipeline_.setLocalIdentity();
-  pipeline_.drawRuns(runCounts_, runOffsets_, runBases_);
+  pipeline_.drawRuns(slot, runs_);
   ++counters_.draws;
   counters_.trianglesDrawn += triangles.size();
 }

@@ -54,9 +54,7 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   DepthUse lastDepth_ = DepthUse::Fresh;
   int lastResolution_ = 0;
   // Scratch for writeTriangles, reused so that a frame allocates nothing.
-  std::vector<GLsizei> runCounts_;
-  std::vector<const void*> runOffsets_;
-  std::vector<GLint> runBases_;
+  std::vector<GlVisibilityPipeline::Run> runs_;
 };
 
 // The local matrix that maps the unit cube [-1, 1]^3 onto `box` (float, as the shaders take it).

@@ -31,8 +31,9 @@ void GlSceneBuffers::attach(const SceneGeometry& scene) {
 
   std::size_t vertexCount = 0, indexCount = 0;
   for (const Mesh* m : all) vertexCount += m->vertices.size(), indexCount += 3 * m->triangles.size();
-  if (vertexCount > 0x7fffffffu || indexCount > 0xffffffffu)
-    throw RunError("the scene is too large for 32-bit vertex indices");
+  // The conservative program numbers six vertices per triangle in a signed int.
+  if (vertexCount > 0x7fffffffu || indexCount / 3 > 0x7fffffffu / 6)
+    throw RunError("the scene has too many triangles or vertices for 32-bit indices");
 
   std::vector<float> vertexData;
   std::vector<std::uint32_t> indexData;
@@ -40,9 +41,9 @@ void GlSceneBuffers::attach(const SceneGeometry& scene) {
   indexData.reserve(indexCount);
   meshes_.clear();
   for (const Mesh* m : all) {
+    const auto baseVertex = static_cast<std::uint32_t>(vertexData.size() / 3);
     GlMeshSlot slot;
-    slot.baseVertex = static_cast<GLint>(vertexData.size() / 3);
-    slot.firstIndex = static_cast<std::uint32_t>(indexData.size());
+    slot.firstTriangle = static_cast<std::uint32_t>(indexData.size() / 3);
     slot.triangleCount = static_cast<std::uint32_t>(m->triangles.size());
     for (const auto& v : m->vertices) vertexData.insert(vertexData.end(), {v.x(), v.y(), v.z()});
     for (const Triangle& t : m->triangles) {
@@ -50,7 +51,7 @@ void GlSceneBuffers::attach(const SceneGeometry& scene) {
         if (i >= m->vertices.size())
           throw InputError("mesh '" + m->name + "' has a triangle index " + std::to_string(i) +
                            " beyond its " + std::to_string(m->vertices.size()) + " vertices");
-        indexData.push_back(i);
+        indexData.push_back(baseVertex + i);
       }
     }
     meshes_.push_back(slot);
@@ -88,6 +89,8 @@ void GlSceneBuffers::attach(const SceneGeometry& scene) {
   glVertexArrayAttribBinding(vao_.get(), 0, 0);
   glEnableVertexArrayAttrib(vao_.get(), 0);
   glVertexArrayElementBuffer(vao_.get(), indices_.get());
+  glCreateVertexArrays(1, &name);
+  emptyVao_ = GlVertexArray(name);
 }
 
 void GlSceneBuffers::uploadPoses(std::span<const Pose> poses) {
@@ -105,9 +108,11 @@ void GlSceneBuffers::uploadPoses(std::span<const Pose> poses) {
                     modelScratch_.data(), GL_DYNAMIC_DRAW);
 }
 
-void GlSceneBuffers::bind() const {
-  glBindVertexArray(vao_.get());
+void GlSceneBuffers::bind(bool pulled) const {
+  glBindVertexArray(pulled ? emptyVao_.get() : vao_.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kModelMatrixBinding, models_.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionBinding, vertices_.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndexBinding, indices_.get());
 }
 
 }  // namespace cdb

@@ -1,7 +1,9 @@
 #pragma once
-// A scene's meshes resident on the GPU: every mesh in one vertex buffer and one index buffer under
-// one vertex array (a base vertex and first index per mesh), a unit cube for boxes after them, and
-// the per-frame model matrices in one shader storage buffer.
+// A scene's meshes resident on the GPU: every mesh in one vertex buffer and one index buffer (each
+// mesh a run of triangles; indices already offset to the shared vertex buffer), a unit cube for
+// boxes after them, and the per-frame model matrices in one shader storage buffer. The raw program
+// reads vertices through a vertex array; the conservative one reads the same two buffers as
+// storage buffers, a whole triangle per vertex invocation.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -14,8 +16,7 @@ namespace cdb {
 
 // Where one mesh lives in the shared buffers.
 struct GlMeshSlot {
-  GLint baseVertex = 0;
-  std::uint32_t firstIndex = 0;  // in indices (3 per triangle)
+  std::uint32_t firstTriangle = 0;  // index of its first triangle in the shared index buffer
   std::uint32_t triangleCount = 0;
 };
 
@@ -25,8 +26,9 @@ class GlSceneBuffers {
   void attach(const SceneGeometry& scene);
   // One float matrix per object, uploaded in one call (the old storage is orphaned, no stall).
   void uploadPoses(std::span<const Pose> poses);
-  // Binds the vertex array and the matrix buffer for drawing.
-  void bind() const;
+  // Binds the storage buffers and the vertex array the raw (`pulled` false) or the conservative
+  // program (`pulled` true, vertices pulled from storage buffers) draws with.
+  void bind(bool pulled) const;
 
   [[nodiscard]] bool attached() const { return static_cast<bool>(vao_); }
   [[nodiscard]] std::size_t objectCount() const { return objectMesh_.size(); }
@@ -35,17 +37,11 @@ class GlSceneBuffers {
   [[nodiscard]] const GlMeshSlot& cube() const { return meshes_.back(); }
 
  private:
-  GlVertexArray vao_;
+  GlVertexArray vao_, emptyVao_;
   GlBuffer vertices_, indices_, models_;
   std::vector<GlMeshSlot> meshes_;  // scene meshes, then the cube
   std::vector<std::uint32_t> objectMesh_;
   std::vector<float> modelScratch_;
 };
-
-// The byte offset of a triangle in the index buffer, as glDraw*Elements* wants it.
-[[nodiscard]] inline const void* indexOffset(const GlMeshSlot& slot, std::uint32_t triangle) {
-  return reinterpret_cast<const void*>(
-      static_cast<std::uintptr_t>(slot.firstIndex + 3u * triangle) * sizeof(std::uint32_t));
-}
 
 }  // namespace cdb

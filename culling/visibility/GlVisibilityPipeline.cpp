@@ -82,7 +82,7 @@ void GlVisibilityPipeline::applyPassState() {
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
   glDepthRange(setup_.depthNear, setup_.depthFar);
-  buffers_.bind();
+  buffers_.bind(conservative_);
   const Eigen::Matrix4f worldToScreen = setup_.worldToScreen.cast<float>();
   const Eigen::Matrix4f worldToClip = setup_.worldToClip.cast<float>();
   if (conservative_) {
@@ -124,6 +124,26 @@ void GlVisibilityPipeline::applyRole(DrawRole role) {
 void GlVisibilityPipeline::applyLocal(const Eigen::Matrix4f& local, bool identity) {
   glUniformMatrix4fv(u::kLocal, 1, GL_FALSE, local.data());
   localIdentity_ = identity;
+}
+
+void GlVisibilityPipeline::drawRuns(const GlMeshSlot& slot, std::span<const Run> runs) {
+  runCounts_.clear();
+  if (conservative_) {
+    runFirsts_.clear();
+    for (const Run& r : runs) {
+      runFirsts_.push_back(static_cast<GLint>(kConservativeVerticesPerTriangle * (slot.firstTriangle + r.first)));
+      runCounts_.push_back(static_cast<GLsizei>(kConservativeVerticesPerTriangle * r.count));
+    }
+    glMultiDrawArrays(GL_TRIANGLES, runFirsts_.data(), runCounts_.data(), static_cast<GLsizei>(runs.size()));
+  } else {
+    runOffsets_.clear();
+    for (const Run& r : runs) {
+      runOffsets_.push_back(indexOffset(slot.firstTriangle + r.first));
+      runCounts_.push_back(static_cast<GLsizei>(3 * r.count));
+    }
+    glMultiDrawElements(GL_TRIANGLES, runCounts_.data(), GL_UNSIGNED_INT, runOffsets_.data(),
+                        static_cast<GLsizei>(runs.size()));
+  }
 }
 
 std::vector<float> GlVisibilityPipeline::readDepth() const {

@@ -58,17 +58,20 @@ class GlVisibilityPipeline {
   }
   void setLocal(const Eigen::Matrix4f& local) { applyLocal(local, false); }
 
-  void draw(const GlMeshSlot& slot, std::uint32_t firstTriangle, std::uint32_t triangleCount) {
-    glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(3 * triangleCount), GL_UNSIGNED_INT,
-                             indexOffset(slot, firstTriangle), slot.baseVertex);
+  // Triangles [first, first + count) of a mesh.
+  void draw(const GlMeshSlot& slot, std::uint32_t first, std::uint32_t count) {
+    const std::uint32_t global = slot.firstTriangle + first;
+    if (conservative_)
+      glDrawArrays(GL_TRIANGLES, static_cast<GLint>(kConservativeVerticesPerTriangle * global),
+                   static_cast<GLsizei>(kConservativeVerticesPerTriangle * count));
+    else
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * count), GL_UNSIGNED_INT, indexOffset(global));
   }
-  // One draw of several index runs of the same mesh.
-  void drawRuns(std::span<const GLsizei> indexCounts, std::span<const void* const> offsets,
-                std::span<const GLint> baseVertices) {
-    glMultiDrawElementsBaseVertex(GL_TRIANGLES, indexCounts.data(), GL_UNSIGNED_INT, offsets.data(),
-                                  static_cast<GLsizei>(indexCounts.size()),
-                                  const_cast<GLint*>(baseVertices.data()));
-  }
+  // Several runs of triangles of a mesh in one draw call.
+  struct Run {
+    std::uint32_t first = 0, count = 0;  // triangles of the mesh
+  };
+  void drawRuns(const GlMeshSlot& slot, std::span<const Run> runs);
 
   std::uint32_t beginQuery() { return queries_.begin(); }
   void endQuery() { queries_.end(); }
@@ -82,6 +85,9 @@ class GlVisibilityPipeline {
   void applyPassState();
   void applyRole(DrawRole role);
   void applyLocal(const Eigen::Matrix4f& local, bool identity);
+  static const void* indexOffset(std::uint32_t globalTriangle) {
+    return reinterpret_cast<const void*>(static_cast<std::uintptr_t>(globalTriangle) * 3u * sizeof(std::uint32_t));
+  }
   void ensureTarget(int resolution);
 
   GlProgramName rawProgram_, conservativeProgram_;
@@ -98,6 +104,9 @@ class GlVisibilityPipeline {
   bool inPass_ = false;
   // Cached draw state; reset by every pass.
   DrawRole role_ = DrawRole::None;
+  std::vector<GLint> runFirsts_;
+  std::vector<GLsizei> runCounts_;
+  std::vector<const void*> runOffsets_;
   ObjectId object_ = ~ObjectId{0};
   bool localIdentity_ = false;
 };

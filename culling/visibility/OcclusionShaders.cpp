@@ -26,82 +26,68 @@ constexpr const char* kEmptyFragment = R"(#version 450 core
 void main() {}
 )";
 
-constexpr const char* kScreenVertex = R"(#version 450 core
-layout(location = 0) in vec3 aPosition;
+// Conservative rasterisation without a geometry shader (slow on llvmpipe): each triangle is drawn
+// as six vertices, and every one of them pulls the whole triangle from the storage buffers. The
+// covered region is the triangle dilated by a pixel square grown by the margin g (the Minkowski
+// sum), which holds the centre of every pixel the triangle touches. It is the triangle's bounding
+// box grown by g intersected with three slabs, one per edge: the triangle's extent along the edge
+// normal grown by the square's support g (|nx| + |ny|). The slabs need no orientation, so edge-on
+// and degenerate triangles are handled alike. The vertices span a region containing it, the
+// grown box or the triangle with its edges pushed out by g (whichever is smaller: the pushed-out
+// triangle of a sliver is huge), and the fragment shader discards what lies outside it.
+constexpr const char* kConservativeVertex = R"(#version 450 core
 layout(std430, binding = 0) readonly buffer ModelMatrices { mat4 uModels[]; };
+layout(std430, binding = 1) readonly buffer Positions { float uPositions[]; };
+layout(std430, binding = 2) readonly buffer Indices { uint uIndices[]; };
 layout(location = 0) uniform int uObject;
 layout(location = 1) uniform mat4 uLocal;
 layout(location = 2) uniform mat4 uWorldToScreen;
-out vec3 vScreen;  // pixels x, y and view depth t in [0, 1]
-void main() {
-  vScreen = (uWorldToScreen * (uModels[uObject] * (uLocal * vec4(aPosition, 1.0)))).xyz;
-}
-)";
-
-// Emits the triangle dilated by a pixel square grown by the margin (the Minkowski sum), which
-// covers the centre of every pixel the triangle touches. It is the intersection of the triangle's
-// bounding box grown by g and the three edge half-planes each pushed out by the square's support
-// g (|nx| + |ny|) along the edge normal; clipping the box by the half-planes keeps every vertex
-// finite even for slivers, whose offset-edge triangle would run off to infinity.
-constexpr const char* kConservativeGeometry = R"(#version 450 core
-layout(triangles) in;
-layout(triangle_strip, max_vertices = 12) out;
-in vec3 vScreen[];
-flat out vec4 gPlane;     // t at the reference point, dt/dx, dt/dy, extent of t over a grown pixel
-flat out vec4 gRefRange;  // reference point (pixels), smallest and largest vertex t
 layout(location = 7) uniform float uGrow;
 layout(location = 8) uniform float uResolution;
+flat out vec4 vPlane;     // t at the reference point, dt/dx, dt/dy, extent of t over a grown pixel
+flat out vec4 vRefRange;  // reference point (pixels), smallest and largest vertex t
+flat out vec4 vBox;       // grown bounding box: min x, min y, max x, max y
+flat out vec4 vSlab[3];   // unit edge normal, allowed range of dot(normal, pixel centre)
 
-const int kMaxVertices = 12;
-vec2 poly[kMaxVertices];
-int count;
-
-// Keeps the part of the polygon with dot(n, x) <= d (Sutherland-Hodgman).
-void clipBy(vec2 n, float d) {
-  vec2 kept[kMaxVertices];
-  int m = 0;
-  for (int i = 0; i < count; ++i) {
-    vec2 a = poly[i];
-    vec2 b = poly[i + 1 < count ? i + 1 : 0];
-    float da = dot(n, a) - d;
-    float db = dot(n, b) - d;
-    if (da <= 0.0 && m < kMaxVertices) kept[m++] = a;
-    if ((da <= 0.0) != (db <= 0.0) && m < kMaxVertices) kept[m++] = mix(a, b, da / (da - db));
-  }
-  poly = kept;
-  count = m;
+vec2 meet(vec3 a, vec3 b) {  // intersection of the lines dot(a.xy, x) = a.z and dot(b.xy, x) = b.z
+  float det = a.x * b.y - a.y * b.x;
+  return vec2(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
 }
 
 void main() {
-  vec2 p[3] = vec2[3](vScreen[0].xy, vScreen[1].xy, vScreen[2].xy);
-  vec3 t = vec3(vScreen[0].z, vScreen[1].z, vScreen[2].z);
+  int triangle = gl_VertexID / 6;
+  int corner = gl_VertexID - 6 * triangle;
+  mat4 toScreen = uWorldToScreen * uModels[uObject] * uLocal;
+  vec2 p[3];
+  vec3 t;
+  for (int i = 0; i < 3; ++i) {
+    uint v = 3u * uIndices[3 * triangle + i];
+    vec3 s = (toScreen * vec4(uPositions[v], uPositions[v + 1u], uPositions[v + 2u], 1.0)).xyz;
+    p[i] = s.xy;
+    t[i] = s.z;
+  }
   vec2 lo = min(min(p[0], p[1]), p[2]) - uGrow;
   vec2 hi = max(max(p[0], p[1]), p[2]) + uGrow;
-  poly[0] = lo;
-  poly[1] = vec2(hi.x, lo.y);
-  poly[2] = hi;
-  poly[3] = vec2(lo.x, hi.y);
-  count = 4;
+  vBox = vec4(lo, hi);
+
+  vec3 outward[3];  // pushed-out edge lines dot(n, x) = d, n pointing away from the triangle
+  bool usable = true;
   for (int i = 0; i < 3; ++i) {
-    vec2 a = p[i];
-    vec2 e = p[(i + 1) % 3] - a;
+    vec2 e = p[(i + 1) % 3] - p[i];
     float len = length(e);
-    if (len < 1e-6) continue;  // a point-like edge: the other edges and the box bound it
+    if (len < 1e-6) {  // a point-like edge: the other edges and the box bound it
+      vSlab[i] = vec4(1.0, 0.0, -1e30, 1e30);
+      usable = false;
+      continue;
+    }
     vec2 n = vec2(e.y, -e.x) / len;
     float off = uGrow * (abs(n.x) + abs(n.y));
-    float side = dot(n, p[(i + 2) % 3] - a);  // where the opposite vertex lies
-    float base = dot(n, a);
-    if (abs(side) < 1e-3) {
-      // Edge-on: the orientation is not trustworthy, keep the slab around the edge's line.
-      clipBy(n, base + off + abs(side));
-      clipBy(-n, -base + off + abs(side));
-    } else if (side < 0.0) {
-      clipBy(n, base + off);
-    } else {
-      clipBy(-n, -base + off);
-    }
+    float base = dot(n, p[i]);
+    float side = dot(n, p[(i + 2) % 3]) - base;  // where the opposite vertex lies
+    vSlab[i] = vec4(n, base + min(side, 0.0) - off, base + max(side, 0.0) + off);
+    outward[i] = side < 0.0 ? vec3(n, base + off) : vec3(-n, -base + off);
+    usable = usable && abs(side) > 1e-3;
   }
-  if (count < 3) return;
 
   // Depth is linear in screen space (orthographic). Its extreme over a grown pixel square is the
   // value at the centre -/+ g (|dt/dx| + |dt/dy|). Near-degenerate triangles fall back on the
@@ -111,43 +97,68 @@ void main() {
   vec2 e1 = p[1] - p[0];
   vec2 e2 = p[2] - p[0];
   float det = e1.x * e2.y - e1.y * e2.x;
-  vec4 plane = vec4(0.5 * (tmin + tmax), 0.0, 0.0, 2.0);
+  vPlane = vec4(0.5 * (tmin + tmax), 0.0, 0.0, 2.0);
   if (abs(det) > 1e-6 * (dot(e1, e1) + dot(e2, e2))) {
     float dt1 = t.y - t.x;
     float dt2 = t.z - t.x;
     float a = (dt1 * e2.y - dt2 * e1.y) / det;
     float b = (dt2 * e1.x - dt1 * e2.x) / det;
     float extent = uGrow * (abs(a) + abs(b));
-    if (!isinf(extent) && !isnan(extent)) plane = vec4(t.x, a, b, extent);
+    if (!isinf(extent) && !isnan(extent)) vPlane = vec4(t.x, a, b, extent);
   }
-  vec4 refRange = vec4(p[0], tmin, tmax);
+  vRefRange = vec4(p[0], tmin, tmax);
 
-  // The convex polygon as a strip: 0, 1, n-1, 2, n-2, ...
-  for (int k = 0; k < count; ++k) {
-    int idx = k == 0 ? 0 : ((k & 1) == 1 ? (k + 1) / 2 : count - k / 2);
-    gPlane = plane;
-    gRefRange = refRange;
-    // z is unused: the fragment shader writes the depth, and z = 0 is never clipped.
-    gl_Position = vec4(poly[idx] / uResolution * 2.0 - 1.0, 0.0, 1.0);
-    EmitVertex();
+  // The pushed-out triangle when it is smaller than the box, else the box (two triangles).
+  vec2 q;
+  vec2 size = hi - lo;
+  bool useTriangle = false;
+  vec2 c0, c1, c2;
+  if (usable) {
+    c0 = meet(outward[2], outward[0]);
+    c1 = meet(outward[0], outward[1]);
+    c2 = meet(outward[1], outward[2]);
+    vec2 f1 = c1 - c0;
+    vec2 f2 = c2 - c0;
+    float area = 0.5 * abs(f1.x * f2.y - f1.y * f2.x);
+    useTriangle = area < size.x * size.y && !any(isnan(vec4(c0, c1))) && !any(isinf(vec4(c0, c1))) &&
+                  !any(isnan(c2)) && !any(isinf(c2));
   }
-  EndPrimitive();
+  if (useTriangle) {
+    q = corner == 0 ? c0 : (corner == 1 ? c1 : c2);  // corners 3..5 repeat c2: an empty triangle
+  } else {
+    // 0 1 2 / 3 4 5 = (lo, lo) (hi, lo) (lo, hi) / (lo, hi) (hi, lo) (hi, hi)
+    bool right = corner == 1 || corner == 4 || corner == 5;
+    bool top = corner == 2 || corner == 3 || corner == 5;
+    q = vec2(right ? hi.x : lo.x, top ? hi.y : lo.y);
+  }
+  // z is unused: the fragment shader writes the depth, and z = 0 is never clipped.
+  gl_Position = vec4(q / uResolution * 2.0 - 1.0, 0.0, 1.0);
 }
 )";
 
-// Writes the nearest depth of the triangle over the pixel (depth writes) or the farthest (tests),
-// each clamped to the triangle's own vertex range (both bound the depth of any of its points in the
-// pixel), moved by the epsilon toward "occluded", and kept inside the pass' half of the range.
+// Keeps the pixels whose centre lies in the dilated triangle, and writes the nearest depth of the
+// triangle over the grown pixel (depth writes) or the farthest (tests), each clamped to the
+// triangle's own vertex range (both bound the depth of any of its points in the pixel), moved by
+// the epsilon toward "occluded", and kept inside the pass' part of the depth range.
 constexpr const char* kConservativeFragment = R"(#version 450 core
-flat in vec4 gPlane;
-flat in vec4 gRefRange;
+flat in vec4 vPlane;
+flat in vec4 vRefRange;
+flat in vec4 vBox;
+flat in vec4 vSlab[3];
 layout(location = 4) uniform vec4 uDepthMap;
 layout(location = 5) uniform vec2 uDepthClamp;
 layout(location = 6) uniform float uSide;
 void main() {
-  vec2 d = gl_FragCoord.xy - gRefRange.xy;
-  float centre = gPlane.x + gPlane.y * d.x + gPlane.z * d.y;
-  float t = uSide > 0.0 ? min(centre + gPlane.w, gRefRange.w) : max(centre - gPlane.w, gRefRange.z);
+  vec2 x = gl_FragCoord.xy;
+  bool inside = all(greaterThanEqual(x, vBox.xy)) && all(lessThanEqual(x, vBox.zw));
+  for (int i = 0; i < 3; ++i) {
+    float s = dot(vSlab[i].xy, x);
+    inside = inside && s >= vSlab[i].z && s <= vSlab[i].w;
+  }
+  if (!inside) discard;
+  vec2 d = x - vRefRange.xy;
+  float centre = vPlane.x + vPlane.y * d.x + vPlane.z * d.y;
+  float t = uSide > 0.0 ? min(centre + vPlane.w, vRefRange.w) : max(centre - vPlane.w, vRefRange.z);
   float z = uDepthMap.x + uDepthMap.y * t + uSide * uDepthMap.z;
   gl_FragDepth = clamp(z, uDepthClamp.x, uDepthClamp.y);
 }
@@ -161,8 +172,7 @@ GlProgramName makeRawOcclusionProgram() {
 }
 
 GlProgramName makeConservativeOcclusionProgram() {
-  return linkProgram("conservative occlusion", {{GL_VERTEX_SHADER, kScreenVertex},
-                                                {GL_GEOMETRY_SHADER, kConservativeGeometry},
+  return linkProgram("conservative occlusion", {{GL_VERTEX_SHADER, kConservativeVertex},
                                                 {GL_FRAGMENT_SHADER, kConservativeFragment}});
 }
 

@@ -19,8 +19,13 @@ inline constexpr GLint kGrowPx = 7;       // float, conservative: half pixel plu
 inline constexpr GLint kResolution = 8;   // float, conservative: pixels across the buffer
 }  // namespace occlusion_uniform
 
-// Binding point of the model-matrix shader storage buffer.
-inline constexpr GLuint kModelMatrixBinding = 0;
+// Shader storage binding points.
+inline constexpr GLuint kModelMatrixBinding = 0;  // mat4 per object
+inline constexpr GLuint kPositionBinding = 1;     // the shared vertex buffer, 3 floats per vertex
+inline constexpr GLuint kIndexBinding = 2;        // the shared index buffer, 3 per triangle
+
+// The conservative program draws triangle i as vertices [6 i, 6 i + 6) of glDrawArrays.
+inline constexpr int kConservativeVerticesPerTriangle = 6;
 
 [[nodiscard]] GlProgramName makeRawOcclusionProgram();
 [[nodiscard]] GlProgramName makeConservativeOcclusionProgram();

@@ -1,0 +1,181 @@
+#include "culling/visibility/GlDrawFloor.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/Errors.h"
+#include "culling/visibility/GlOcclusionQueryBackend.h"
+
+namespace cdb {
+
+struct GlDrawFloor::Command {
+  enum class Kind : std::uint8_t { Options, Poses, Pass, Query, Write, WriteRuns, Fetch };
+  Kind kind = Kind::Pass;
+  ObjectId object = 0;
+  GlMeshSlot slot;
+  std::uint32_t first = 0, count = 0;
+  int local = -1;           // index into Program::locals, -1 = identity
+  std::size_t payload = 0;  // index into the Program vector of its kind
+};
+
+struct GlDrawFloor::Program {
+  std::vector<Command> commands;
+  std::vector<VisibilityOptions> options;
+  std::vector<std::vector<Pose>> poses;
+  std::vector<DepthPassSetup> passes;
+  std::vector<Eigen::Matrix4f, Eigen::aligned_allocator<Eigen::Matrix4f>> locals;
+  std::vector<std::vector<GlVisibilityPipeline::Run>> runs;
+  std::vector<const std::vector<std::uint8_t>*> expected;  // per fetch
+  std::size_t queries = 0, draws = 0;
+};
+
+GlDrawFloor::GlDrawFloor(HeadlessGlContext& context, const VisibilityOptions& options)
+    : pipeline_(context), options_(options) {}
+
+GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
+  Program p;
+  const SceneGeometry* scene = nullptr;
+  for (const RecordedOp& op : ops) {
+    if (op.kind != RecordedOp::Kind::AttachScene) continue;
+    if (scene != nullptr && scene != op.scene)
+      throw InputError("a recording with more than one scene cannot be replayed as one floor");
+    scene = op.scene;
+  }
+  if (scene == nullptr) throw InputError("the recording attaches no scene");
+  pipeline_.attach(*scene);
+  const GlSceneBuffers& buffers = pipeline_.buffers();
+  const auto slotOf = [&](ObjectId o) -> const GlMeshSlot& {
+    if (o >= buffers.objectCount()) throw InputError("the recording draws an object beyond its scene");
+    return buffers.slotOf(o);
+  };
+
+  using K = RecordedOp::Kind;
+  using C = Command::Kind;
+  for (const RecordedOp& op : ops) {
+    Command c;
+    switch (op.kind) {
+      case K::AttachScene: continue;
+      case K::SetOptions:
+        c.kind = C::Options, c.payload = p.options.size();
+        p.options.push_back(op.options);
+        break;
+      case K::SetPoses:
+        c.kind = C::Poses, c.payload = p.poses.size();
+        p.poses.push_back(op.poses);
+        break;
+      case K::BeginPass:
+        c.kind = C::Pass, c.payload = p.passes.size();
+        p.passes.push_back(makeDepthPassSetup(op.view, op.depth));
+        break;
+      case K::QueryRange:
+      case K::WriteRange:
+        c.kind = op.kind == K::QueryRange ? C::Query : C::Write;
+        c.object = op.range.object, c.slot = slotOf(op.range.object);
+        c.first = op.range.firstTriangle, c.count = op.range.triangleCount;
+        break;
+      case K::QueryBox:
+      case K::WriteBox:
+        c.kind = op.kind == K::QueryBox ? C::Query : C::Write;
+        c.object = op.object, c.slot = buffers.cube();
+        (void)slotOf(op.object);
+        c.count = c.slot.triangleCount;
+        c.local = static_cast<int>(p.locals.size());
+        p.locals.push_back(boxMatrix(op.box));
+        break;
+      case K::WriteTriangles: {
+        c.kind = C::WriteRuns, c.object = op.object, c.payload = p.runs.size();
+        const GlMeshSlot& slot = slotOf(op.object);
+        c.slot = slot;
+        std::vector<GlVisibilityPipeline::Run>& runs = p.runs.emplace_back();
+        // Consecutive triangles form one run, as the backend draws them.
+        const std::vector<std::uint32_t>& t = op.triangles;
+        for (std::size_t i = 0; i < t.size();) {
+          std::uint32_t n = 1;
+          while (i + n < t.size() && t[i + n] == t[i] + n) ++n;
+          if (t[i] >= slot.triangleCount || n > slot.triangleCount - t[i])
+            throw InputError("the recording writes a triangle beyond its mesh");
+          runs.push_back({t[i], n});
+          i += n;
+        }
+        break;
+      }
+      case K::FetchResults:
+        c.kind = C::Fetch, c.payload = p.expected.size();
+        p.expected.push_back(&op.answers);
+        break;
+    }
+    if (c.kind == C::Query) ++p.queries;
+    if ((c.kind == C::Query || c.kind == C::Write) && c.count > 0) ++p.draws;
+    if (c.kind == C::WriteRuns && !p.runs[c.payload].empty()) ++p.draws;
+    p.commands.push_back(c);
+  }
+  return p;
+}
+
+void GlDrawFloor::run(const Program& p, std::vector<std::vector<std::uint8_t>>& answers) {
+  using C = Command::Kind;
+  pipeline_.setConservative(options_.conservative);
+  pipeline_.setRawDepthOffset(options_.rawDepthOffset);
+  for (const Command& c : p.commands) {
+    switch (c.kind) {
+      case C::Options:
+        pipeline_.setConservative(p.options[c.payload].conservative);
+        pipeline_.setRawDepthOffset(p.options[c.payload].rawDepthOffset);
+        break;
+      case C::Poses: pipeline_.uploadPoses(p.poses[c.payload]); break;
+      case C::Pass: pipeline_.beginPass(p.passes[c.payload]); break;
+      case C::Query:
+      case C::Write: {
+        const bool query = c.kind == C::Query;
+        pipeline_.setRole(query ? DrawRole::Test : DrawRole::Write);
+        pipeline_.setObject(c.object);
+        if (c.local < 0)
+          pipeline_.setLocalIdentity();
+        else
+          pipeline_.setLocal(p.locals[static_cast<std::size_t>(c.local)]);
+        if (query) pipeline_.beginQuery();
+        if (c.count > 0) pipeline_.draw(c.slot, c.first, c.count);
+        if (query) pipeline_.endQuery();
+        break;
+      }
+      case C::WriteRuns: {
+        const std::vector<GlVisibilityPipeline::Run>& runs = p.runs[c.payload];
+        if (runs.empty()) break;
+        pipeline_.setRole(DrawRole::Write);
+        pipeline_.setObject(c.object);
+        pipeline_.setLocalIdentity();
+        pipeline_.drawRuns(c.slot, runs);
+        break;
+      }
+      case C::Fetch: pipeline_.fetch(answers[c.payload]); break;
+    }
+  }
+  // A recording that ends between a query and its fetch still pays for the wait.
+  if (pipeline_.pendingQueries() > 0) pipeline_.fetch(leftover_);
+}
+
+FloorTiming GlDrawFloor::replay(std::span<const RecordedOp> ops, int repeats) {
+  const Program program = lower(ops);
+  std::vector<std::vector<std::uint8_t>> answers(program.expected.size());
+  FloorTiming timing;
+  timing.passes = program.passes.size();
+  timing.queries = program.queries;
+  timing.draws = program.draws;
+  timing.fetches = program.expected.size();
+  run(program, answers);  // warm-up
+  for (std::size_t i = 0; i < answers.size(); ++i)
+    timing.answersMatch = timing.answersMatch && answers[i] == *program.expected[i];
+  double total = 0.0, best = 0.0;
+  for (int r = 0; r < std::max(repeats, 1); ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    run(program, answers);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    total += s;
+    best = r == 0 ? s : std::min(best, s);
+  }
+  timing.bestSeconds = best;
+  timing.meanSeconds = total / std::max(repeats, 1);
+  return timing;
+}
+
+}  // namespace cdb

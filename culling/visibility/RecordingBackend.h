@@ -1,0 +1,62 @@
+#pragma once
+// A visibility backend that forwards every call to another one and logs it, so that the GL work of
+// a real run can be replayed on its own (GlDrawFloor) or inspected.
+#include <string>
+#include <vector>
+
+#include "culling/visibility/VisibilityBackend.h"
+
+namespace cdb {
+
+struct RecordedOp {
+  enum class Kind {
+    SetOptions, AttachScene, SetPoses, BeginPass, QueryRange, QueryBox, WriteRange, WriteTriangles,
+    WriteBox, FetchResults
+  };
+  Kind kind = Kind::BeginPass;
+  VisibilityOptions options;                 // SetOptions
+  const SceneGeometry* scene = nullptr;      // AttachScene (not owned)
+  std::vector<Pose> poses;                   // SetPoses
+  ViewSpec view;                             // BeginPass
+  DepthUse depth = DepthUse::Fresh;          // BeginPass
+  MeshRange range;                           // QueryRange, WriteRange
+  ObjectId object = 0;                       // QueryBox, WriteTriangles, WriteBox
+  OrientedBox box;                           // QueryBox, WriteBox
+  std::vector<std::uint32_t> triangles;      // WriteTriangles
+  std::vector<std::uint8_t> answers;         // FetchResults: what the recorded backend answered
+};
+
+class RecordingBackend final : public VisibilityBackend {
+ public:
+  // `inner` does the work and must outlive this.
+  explicit RecordingBackend(VisibilityBackend& inner);
+
+  [[nodiscard]] std::string_view name() const override { return name_; }
+  void setOptions(const VisibilityOptions& options) override;
+  void attachScene(const SceneGeometry& scene) override;
+  void setPoses(std::span<const Pose> poses) override;
+  void beginPass(const ViewSpec& view, DepthUse depth) override;
+  QueryIndex queryRange(const MeshRange& range) override;
+  QueryIndex queryBox(ObjectId object, const OrientedBox& localBox) override;
+  void writeRange(const MeshRange& range) override;
+  void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) override;
+  void writeBox(ObjectId object, const OrientedBox& localBox) override;
+  void fetchResults(std::vector<std::uint8_t>& fullyVisible) override;
+  [[nodiscard]] VisibilityCounters counters() const override { return inner_.counters(); }
+  void resetCounters() override { inner_.resetCounters(); }
+
+  [[nodiscard]] const std::vector<RecordedOp>& ops() const { return ops_; }
+  void clear() { ops_.clear(); }
+
+ private:
+  RecordedOp& log(RecordedOp::Kind kind);
+
+  VisibilityBackend& inner_;
+  std::string name_;
+  std::vector<RecordedOp> ops_;
+};
+
+// Issues `ops` again on `target` (through the interface; fetched answers are discarded).
+void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops);
+
+}  // namespace cdb
