@@ -18,11 +18,13 @@ using Vec3 = Eigen::Vector3d;
 // Two triangles in the frame of a shared pose, and the view to test them along.
 struct PairCase {
   Mesh a, b;
-  Pose pose;
+  Pose poseA, poseB;
   Vec3 direction;
 };
 
-enum class PairKind { TouchAtPoint, CrossShort, SliverTouch, SliverCross, TouchLarge, CrossLarge, Gap };
+enum class PairKind {
+  TouchAtPoint, CrossShort, SliverTouch, SliverCross, TouchLarge, CrossLarge, FaceOnTouch, Gap
+};
 
 class CaseGenerator {
  public:
@@ -30,11 +32,13 @@ class CaseGenerator {
 
   // `pixel` is the world size of a pixel of the view the case is tested in.
   PairCase make(PairKind kind, double pixel) {
+    if (kind == PairKind::FaceOnTouch) return faceOn(pixel);
     PairCase c;
-    c.pose.rotation = randomRotation();
-    c.pose.translation = Vec3(u(-0.4, 0.4), u(-0.4, 0.4), u(-0.4, 0.4));
+    c.poseA.rotation = randomRotation();
+    c.poseA.translation = Vec3(u(-0.4, 0.4), u(-0.4, 0.4), u(-0.4, 0.4));
+    c.poseB = c.poseA;
     c.direction = unit();
-    const Vec3 viewLocal = c.pose.rotation.inverse() * c.direction;
+    const Vec3 viewLocal = c.poseA.rotation.inverse() * c.direction;
     const bool sliver = kind == PairKind::SliverTouch || kind == PairKind::SliverCross;
     // Large triangles (up to 40 pixels) test the depth plane rather than the vertex range.
     const bool large = kind == PairKind::TouchLarge || kind == PairKind::CrossLarge || kind == PairKind::Gap;
@@ -74,6 +78,36 @@ class CaseGenerator {
   }
 
  private:
+  // Both triangles face the viewer at one depth and touch at a point, each under its own pose:
+  // their depths then differ only by float rounding, which the depth epsilon must absorb.
+  PairCase faceOn(double pixel) {
+    PairCase c;
+    c.direction = unit();
+    const Eigen::Matrix3d basis = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), c.direction).toRotationMatrix();
+    const Vec3 p(u(-0.4, 0.4), u(-0.4, 0.4), u(-0.4, 0.4));
+    const auto flat = [&] {
+      std::array<Vec3, 3> t = randomTriangle(pixel, 0.05, 20.0);
+      for (Vec3& v : t) v = basis * Vec3(v.x(), v.y(), 0.0);
+      return t;
+    };
+    std::array<Vec3, 3> a = flat(), b = flat();
+    const Vec3 onA = pointOf(a, static_cast<int>(u(0, 3)));
+    for (Vec3& v : a) v += p - onA;
+    const Vec3 onB = b[0];
+    for (Vec3& v : b) v += p - onB;
+    for (Pose* pose : {&c.poseA, &c.poseB}) {
+      pose->rotation = randomRotation();
+      pose->translation = Vec3(u(-0.4, 0.4), u(-0.4, 0.4), u(-0.4, 0.4));
+    }
+    const auto local = [](const Pose& pose, std::array<Vec3, 3> t) {
+      for (Vec3& v : t) v = pose.rotation.inverse() * (v - pose.translation);
+      return t;
+    };
+    c.a = toMesh(local(c.poseA, a));
+    c.b = toMesh(local(c.poseB, b));
+    return c;
+  }
+
   double u(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
   Vec3 unit() {
     std::normal_distribution<double> n;
@@ -144,8 +178,9 @@ Outcome runCases(GlOcclusionQueryBackend& backend, bool conservative, PairKind k
     for (const Mesh* m : {&c.a, &c.b}) {
       scene.objects.push_back({static_cast<std::uint32_t>(scene.meshes.size()), false, ""});
       scene.meshes.push_back(*m);
-      poses.push_back(c.pose);
     }
+    poses.push_back(c.poseA);
+    poses.push_back(c.poseB);
   }
   backend.setOptions({conservative, 1e-5});
   backend.attachScene(scene);
@@ -170,7 +205,7 @@ Outcome runCases(GlOcclusionQueryBackend& backend, bool conservative, PairKind k
 }
 
 constexpr int kResolutions[] = {16, 64, 256, 800};
-constexpr int kCasesPerKind = 50;  // per kind and resolution: 6 x 4 x 50 cases, 2 tests each
+constexpr int kCasesPerKind = 50;  // per kind and resolution: 7 x 4 x 50 cases, 2 tests each
 
 class ConservativeContact : public testing::Test {
  protected:
@@ -186,7 +221,8 @@ class ConservativeContact : public testing::Test {
 GlOcclusionQueryBackend* ConservativeContact::backend_ = nullptr;
 
 const PairKind kContactKinds[] = {PairKind::TouchAtPoint, PairKind::CrossShort, PairKind::SliverTouch,
-                                  PairKind::SliverCross, PairKind::TouchLarge, PairKind::CrossLarge};
+                                  PairKind::SliverCross, PairKind::TouchLarge, PairKind::CrossLarge,
+                                  PairKind::FaceOnTouch};
 const char* kindName(PairKind k) {
   switch (k) {
     case PairKind::TouchAtPoint: return "touch at a point";
@@ -195,6 +231,7 @@ const char* kindName(PairKind k) {
     case PairKind::SliverCross: return "sliver crossing";
     case PairKind::TouchLarge: return "large touching at a point";
     case PairKind::CrossLarge: return "large crossing";
+    case PairKind::FaceOnTouch: return "facing the viewer, touching";
     case PairKind::Gap: return "gap";
   }
   return "";

@@ -1,0 +1,125 @@
+// A recorded run replays to the same answers through the interface and on the draw floor.
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "core/Errors.h"
+#include "culling/visibility/GlDrawFloor.h"
+#include "culling/visibility/RecordingBackend.h"
+#include "scenes/ProceduralMeshes.h"
+#include "tests/visibility/GlTestSupport.h"
+
+namespace cdb {
+namespace {
+
+// A row of tori, every other one dropped into its neighbour, and a CULLIDE-like frame: two passes
+// along x and z, each object tested then written, a box pass and a triangle write.
+struct ToriRun {
+  SceneGeometry scene;
+  std::vector<Pose> poses;
+
+  ToriRun() {
+    scene.meshes.push_back(makeTorus(1.0, 0.3, 20, 20));
+    for (int i = 0; i < 6; ++i) scene.objects.push_back({0, false, ""});
+    for (int i = 0; i < 6; ++i) {
+      Pose p;
+      p.translation = Eigen::Vector3d(2.2 * i - (i % 2) * 0.9, 0.1 * i, 0.0);
+      p.rotation = Eigen::AngleAxisd(0.4 * i, Eigen::Vector3d::UnitX());
+      poses.push_back(p);
+    }
+  }
+
+  void frame(VisibilityBackend& backend) const {
+    backend.setPoses(poses);
+    const Aabb bounds(Eigen::Vector3d(-2, -2, -2), Eigen::Vector3d(14, 2.5, 2));
+    for (const Eigen::Vector3d axis : {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ()}) {
+      backend.beginPass({axis, bounds, 128}, DepthUse::SharedFirst);
+      for (ObjectId o = 0; o < 6; ++o) {
+        backend.queryRange(test::wholeOf(scene, o));
+        backend.writeRange(test::wholeOf(scene, o));
+      }
+      backend.beginPass({-axis, bounds, 128}, DepthUse::SharedSecond);
+      for (ObjectId o = 6; o-- > 0;) {
+        backend.queryRange(test::wholeOf(scene, o));
+        backend.writeRange(test::wholeOf(scene, o));
+      }
+    }
+    backend.beginPass({Eigen::Vector3d(1, 1, 1).normalized(), bounds, 64}, DepthUse::Fresh);
+    OrientedBox box;
+    box.halfExtents = Eigen::Vector3d(1.3, 0.3, 1.3);
+    const std::uint32_t some[] = {0, 1, 2, 3, 100, 101, 400};
+    backend.writeTriangles(2, some);
+    for (ObjectId o = 0; o < 6; ++o) {
+      backend.queryBox(o, box);
+      backend.writeBox(o, box);
+    }
+    std::vector<std::uint8_t> answers;
+    backend.fetchResults(answers);
+  }
+};
+
+TEST(RecordingBackend, ForwardsLogsAndReplays) {
+  const ToriRun run;
+  GlOcclusionQueryBackend gl(test::sharedGlContext());
+  RecordingBackend recording(gl);
+  EXPECT_EQ(recording.name(), "recording:gl-occlusion-query");
+  recording.attachScene(run.scene);
+  run.frame(recording);
+  const VisibilityCounters recorded = recording.counters();
+  EXPECT_EQ(recorded.queries, 30u);
+  EXPECT_EQ(recorded.draws, 61u);
+  EXPECT_EQ(recorded.passes, 5u);
+  EXPECT_EQ(recorded.depthClears, 3u);
+  EXPECT_EQ(recorded.fetches, 1u);
+  const std::vector<RecordedOp>& ops = recording.ops();
+  ASSERT_FALSE(ops.empty());
+  EXPECT_EQ(ops.front().kind, RecordedOp::Kind::AttachScene);
+  EXPECT_EQ(ops.back().kind, RecordedOp::Kind::FetchResults);
+  const std::vector<std::uint8_t> answers = ops.back().answers;
+  ASSERT_EQ(answers.size(), 30u);
+  // The dropped-in tori collide with their neighbours: not everything is fully visible.
+  EXPECT_LT(std::count(answers.begin(), answers.end(), 1), 30);
+
+  GlOcclusionQueryBackend again(test::sharedGlContext());
+  RecordingBackend second(again);
+  replayOps(second, ops);
+  EXPECT_EQ(second.ops().back().answers, answers);
+  EXPECT_EQ(again.counters().draws, recorded.draws);
+}
+
+TEST(GlDrawFloor, ReplaysTheSameWork) {
+  const ToriRun run;
+  GlOcclusionQueryBackend gl(test::sharedGlContext());
+  RecordingBackend recording(gl);
+  recording.attachScene(run.scene);
+  run.frame(recording);
+  GlDrawFloor floor(test::sharedGlContext());
+  const FloorTiming t = floor.replay(recording.ops(), 2);
+  EXPECT_TRUE(t.answersMatch);
+  EXPECT_EQ(t.queries, 30u);
+  EXPECT_EQ(t.draws, 61u);
+  EXPECT_EQ(t.passes, 5u);
+  EXPECT_EQ(t.fetches, 1u);
+  EXPECT_GT(t.bestSeconds, 0.0);
+  EXPECT_LE(t.bestSeconds, t.meanSeconds);
+}
+
+TEST(GlDrawFloor, RawModeRecordingReplaysInRawMode) {
+  const ToriRun run;
+  const VisibilityOptions raw{false, 1e-5};
+  GlOcclusionQueryBackend gl(test::sharedGlContext(), raw);
+  RecordingBackend recording(gl);
+  recording.attachScene(run.scene);
+  run.frame(recording);
+  GlDrawFloor floor(test::sharedGlContext(), raw);
+  EXPECT_TRUE(floor.replay(recording.ops(), 1).answersMatch);
+}
+
+TEST(GlDrawFloor, RecordingWithoutSceneIsRejected) {
+  GlDrawFloor floor(test::sharedGlContext());
+  std::vector<RecordedOp> ops(1);
+  EXPECT_THROW(floor.replay(ops), InputError);
+}
+
+}  // namespace
+}  // namespace cdb
