@@ -55,8 +55,8 @@ vec2 meet(vec3 a, vec3 b) {  // intersection of the lines dot(a.xy, x) = a.z and
 }
 
 void main() {
-  int triangle = gl_VertexID / 6;
-  int corner = gl_VertexID - 6 * triangle;
+  int triangle = gl_VertexID / 3;
+  int corner = gl_VertexID - 3 * triangle;
   mat4 toScreen = uWorldToScreen * uModels[uObject] * uLocal;
   vec2 p[3];
   vec3 t;
@@ -108,7 +108,7 @@ void main() {
   }
   vRefRange = vec4(p[0], tmin, tmax);
 
-  // The pushed-out triangle when it is smaller than the box, else the box (two triangles).
+  // The pushed-out triangle when it is smaller than the box, else a right triangle holding the box.
   vec2 q;
   vec2 size = hi - lo;
   bool useTriangle = false;
@@ -120,16 +120,15 @@ void main() {
     vec2 f1 = c1 - c0;
     vec2 f2 = c2 - c0;
     float area = 0.5 * abs(f1.x * f2.y - f1.y * f2.x);
-    useTriangle = area < size.x * size.y && !any(isnan(vec4(c0, c1))) && !any(isinf(vec4(c0, c1))) &&
+    useTriangle = area < 2.0 * size.x * size.y && !any(isnan(vec4(c0, c1))) && !any(isinf(vec4(c0, c1))) &&
                   !any(isnan(c2)) && !any(isinf(c2));
   }
   if (useTriangle) {
-    q = corner == 0 ? c0 : (corner == 1 ? c1 : c2);  // corners 3..5 repeat c2: an empty triangle
+    q = corner == 0 ? c0 : (corner == 1 ? c1 : c2);
   } else {
-    // 0 1 2 / 3 4 5 = (lo, lo) (hi, lo) (lo, hi) / (lo, hi) (hi, lo) (hi, hi)
-    bool right = corner == 1 || corner == 4 || corner == 5;
-    bool top = corner == 2 || corner == 3 || corner == 5;
-    q = vec2(right ? hi.x : lo.x, top ? hi.y : lo.y);
+    // Legs of twice the box plus a pixel, so the box's far corner is well inside.
+    vec2 legs = 2.0 * size + 1.0;
+    q = corner == 0 ? lo : (corner == 1 ? vec2(lo.x + legs.x, lo.y) : vec2(lo.x, lo.y + legs.y));
   }
   // z is unused: the fragment shader writes the depth, and z = 0 is never clipped.
   gl_Position = vec4(q / uResolution * 2.0 - 1.0, 0.0, 1.0);

@@ -24,8 +24,8 @@ inline constexpr GLuint kModelMatrixBinding = 0;  // mat4 per object
 inline constexpr GLuint kPositionBinding = 1;     // the shared vertex buffer, 3 floats per vertex
 inline constexpr GLuint kIndexBinding = 2;        // the shared index buffer, 3 per triangle
 
-// The conservative program draws triangle i as vertices [6 i, 6 i + 6) of glDrawArrays.
-inline constexpr int kConservativeVerticesPerTriangle = 6;
+// The conservative program draws triangle i as vertices [3 i, 3 i + 3) of glDrawArrays.
+inline constexpr int kConservativeVerticesPerTriangle = 3;
 
 [[nodiscard]] GlProgramName makeRawOcclusionProgram();
 [[nodiscard]] GlProgramName makeConservativeOcclusionProgram();
