@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "scenes/ProceduralMeshes.h"
+#include "scenes/SceneBuilder.h"
 #include "scenes/ScenarioConfig.h"
 #include "scenes/SceneGeometry.h"
 
@@ -63,20 +64,7 @@ inline ScenarioConfig dropScenario(std::vector<InitialPose> toriPoses) {
   return config;
 }
 
-inline Mesh meshFor(const MeshSpec& spec) {
-  if (spec.kind == MeshSpec::Kind::Plane) return makePlane(spec.planeSize, spec.planeCells);
-  return makeTorus(spec.majorRadius, spec.minorRadius, spec.rings, spec.sides);
-}
-
-// One mesh per group, objects in group order: the layout buildScene() produces.
-inline SceneGeometry sceneFor(const ScenarioConfig& config) {
-  SceneGeometry scene;
-  for (const BodyGroup& group : config.bodies) {
-    const auto mesh = std::uint32_t(scene.meshes.size());
-    scene.meshes.push_back(meshFor(group.mesh));
-    for (int i = 0; i < group.count; ++i) scene.objects.push_back({mesh, group.fixed, group.name});
-  }
-  return scene;
-}
+// Procedural meshes only, so no asset path.
+inline SceneGeometry sceneFor(const ScenarioConfig& config) { return buildScene(config, {}); }
 
 }  // namespace cdb::dynamics_test

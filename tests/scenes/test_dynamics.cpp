@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <ctime>
 #include <functional>
 #include <string>
@@ -13,6 +14,7 @@
 
 #include "core/Errors.h"
 #include "scenes/BodyPlacement.h"
+#include "scenes/ConfigLoader.h"
 #include "scenes/ContactReduction.h"
 #include "scenes/MeshMeasures.h"
 #include "scenes/PoseRecording.h"
@@ -189,6 +191,23 @@ TEST(RigidBodyDynamics, ClosedCubeKeepsBodiesInsideWithoutGravity) {
   EXPECT_EQ(moved, scene.objectCount());
 }
 
+TEST(RigidBodyDynamics, ShippedEnv3PlacesAndKeepsItsToriInsideTheCube) {
+  const ScenarioConfig config =
+      loadScenarioConfig(std::filesystem::path(CDBENCH_SOURCE_DIR) / "configs" / "env3.yaml");
+  const SceneGeometry scene = sceneFor(config);
+  const double halfExtent = config.dynamics.containerHalfExtent;
+  ASSERT_GT(halfExtent, 0);
+  RigidBodySimulation simulation(config, scene, config.seed);
+  double farthest = 0;
+  for (int f = 0; f < 40; ++f) {
+    simulation.stepFrame();
+    for (const Pose& pose : simulation.poses()) {
+      farthest = std::max(farthest, pose.translation.cwiseAbs().maxCoeff());
+    }
+  }
+  EXPECT_LT(farthest, halfExtent);
+}
+
 TEST(RigidBodyDynamics, PoseMapsMeshCoordinatesThroughTheCentreOfMassOffset) {
   // A torus whose mesh is off its local origin: ODE's body sits at the centre of mass, the pose
   // must still place the mesh. Without gravity and velocity nothing may move.
@@ -318,7 +337,7 @@ TEST(RigidBodyDynamics, PlacementThatCannotFitThrowsRunError) {
 }
 
 TEST(DynamicsMeshMeasures, TorusIsClosedWithItsVolumeAndSphere) {
-  const Mesh torus = meshFor(MeshSpec{});
+  const Mesh torus = makeTorus(0.5, 0.2, 20, 20);
   EXPECT_TRUE(isClosedMesh(torus));
   const double exact = 2 * M_PI * M_PI * 0.5 * 0.2 * 0.2;
   EXPECT_NEAR(signedVolume(torus), exact, 0.05 * exact);  // a 20 x 20 polygon is a bit smaller
@@ -328,7 +347,7 @@ TEST(DynamicsMeshMeasures, TorusIsClosedWithItsVolumeAndSphere) {
 }
 
 TEST(DynamicsMeshMeasures, OpenFlippedAndSeamDuplicatedMeshes) {
-  Mesh torus = meshFor(MeshSpec{});
+  Mesh torus = makeTorus(0.5, 0.2, 20, 20);
   Mesh inverted = torus;
   for (auto& t : inverted.triangles) std::swap(t[1], t[2]);
   EXPECT_TRUE(isClosedMesh(inverted));
@@ -345,9 +364,7 @@ TEST(DynamicsMeshMeasures, OpenFlippedAndSeamDuplicatedMeshes) {
 
   torus.triangles.pop_back();
   EXPECT_FALSE(isClosedMesh(torus));
-  MeshSpec plane;
-  plane.kind = MeshSpec::Kind::Plane;
-  EXPECT_FALSE(isClosedMesh(meshFor(plane)));
+  EXPECT_FALSE(isClosedMesh(makePlane(10.0, 30)));
 }
 
 TEST(DynamicsContactPicker, KeepsTheDeepestAndSpreadsTheRest) {
