@@ -1,13 +1,13 @@
 #include "scenes/ConfigLoader.h"
 
+#include <yaml-cpp/yaml.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
 #include <set>
 #include <sstream>
-
-#include <yaml-cpp/yaml.h>
 
 #include "core/Errors.h"
 #include "scenes/ConfigNode.h"
@@ -17,7 +17,9 @@ namespace {
 
 namespace L = limits;
 
-std::string fileLine(const std::string& file, int line) { return file + ":" + std::to_string(line); }
+std::string fileLine(const std::string& file, int line) {
+  return file + ":" + std::to_string(line);
+}
 
 MeshSpec readMesh(const ConfigNode& node) {
   node.require("a mesh map with 'kind'");
@@ -63,9 +65,12 @@ MeshSpec readMesh(const ConfigNode& node) {
 // longest side of assetSize, so half the diagonal of that cube bounds them whatever their shape.
 double boundingRadius(const MeshSpec& mesh) {
   switch (mesh.kind) {
-    case MeshSpec::Kind::Torus: return mesh.majorRadius + mesh.minorRadius;
-    case MeshSpec::Kind::Plane: return mesh.planeSize * std::numbers::sqrt2 / 2;
-    case MeshSpec::Kind::Asset: return mesh.assetSize * std::numbers::sqrt3 / 2;
+    case MeshSpec::Kind::Torus:
+      return mesh.majorRadius + mesh.minorRadius;
+    case MeshSpec::Kind::Plane:
+      return mesh.planeSize * std::numbers::sqrt2 / 2;
+    case MeshSpec::Kind::Asset:
+      return mesh.assetSize * std::numbers::sqrt3 / 2;
   }
   return 0;
 }
@@ -82,7 +87,8 @@ InitialPose readPose(const ConfigNode& node) {
   node.expectKeys({"position", "rotation_degrees"});
   InitialPose pose;
   if (auto n = node["position"]; n.present()) pose.position = n.vec3(L::kCoordinate);
-  if (auto n = node["rotation_degrees"]; n.present()) pose.rotationDegrees = n.vec3(L::kAngleDegrees);
+  if (auto n = node["rotation_degrees"]; n.present())
+    pose.rotationDegrees = n.vec3(L::kAngleDegrees);
   return pose;
 }
 
@@ -110,7 +116,8 @@ RandomPlacement readPlacement(const ConfigNode& node) {
         .fail("speed_max >= speed_min (" + std::to_string(p.speedMin) + ")",
               std::to_string(p.speedMax));
   }
-  if (auto n = node["angular_speed_max"]; n.present()) p.angularSpeedMax = n.number(L::kAngularSpeed);
+  if (auto n = node["angular_speed_max"]; n.present())
+    p.angularSpeedMax = n.number(L::kAngularSpeed);
   return p;
 }
 
@@ -155,9 +162,11 @@ DynamicsSpec readDynamics(const ConfigNode& node) {
                    "linear_damping", "angular_damping"});
   if (auto n = node["gravity"]; n.present()) d.gravity = n.vec3(L::kGravity);
   if (auto n = node["time_step"]; n.present()) d.timeStep = n.number(L::kTimeStep);
-  if (auto n = node["steps_per_frame"]; n.present()) d.stepsPerFrame = int(n.integer(L::kStepsPerFrame));
+  if (auto n = node["steps_per_frame"]; n.present())
+    d.stepsPerFrame = int(n.integer(L::kStepsPerFrame));
   if (auto n = node["frames"]; n.present()) d.frames = int(n.integer(L::kFrames));
-  if (auto n = node["warmup_frames"]; n.present()) d.warmupFrames = int(n.integer(L::kWarmupFrames));
+  if (auto n = node["warmup_frames"]; n.present())
+    d.warmupFrames = int(n.integer(L::kWarmupFrames));
   if (auto n = node["container_half_extent"]; n.present()) {
     d.containerHalfExtent = n.number(L::kContainerHalfExtent);
   }
@@ -207,7 +216,8 @@ CullingSpec readCulling(const ConfigNode& node) {
   node.expectKeys({"conservative", "raw_depth_offset", "leaf_triangles", "bvh_offset"});
   if (auto n = node["conservative"]; n.present()) c.conservative = n.boolean();
   if (auto n = node["raw_depth_offset"]; n.present()) c.rawDepthOffset = n.number(L::kDepthOffset);
-  if (auto n = node["leaf_triangles"]; n.present()) c.leafTriangles = int(n.integer(L::kLeafTriangles));
+  if (auto n = node["leaf_triangles"]; n.present())
+    c.leafTriangles = int(n.integer(L::kLeafTriangles));
   if (auto n = node["bvh_offset"]; n.present()) c.bvhOffset = n.number(L::kBvhOffset);
   return c;
 }
@@ -221,7 +231,7 @@ void checkPlacement(const BodyGroup& body, int largestCount, const DynamicsSpec&
   const double h = dynamics.containerHalfExtent;
   if (h > 0) {
     for (int i = 0; i < 3; ++i) {
-      const bool minOut = p.regionMin[i] - r < -h, maxOut = p.regionMax[i] + r > h;
+      const bool minOut = p.regionMin[i] - r<-h, maxOut = p.regionMax[i] + r> h;
       if (minOut || maxOut) {
         const ConfigNode at = node["placement"][minOut ? "region_min" : "region_max"];
         std::ostringstream expected;
@@ -269,14 +279,16 @@ ScenarioConfig readScenario(const ConfigNode& root, const std::string& file) {
   config.sweep = readSweep(root["sweep"]);
   if (!config.sweep.countedGroup.empty()) {
     const ConfigNode at = root["sweep"]["counted_group"];
-    const auto it = std::find_if(config.bodies.begin(), config.bodies.end(),
-                                 [&](const BodyGroup& b) { return b.name == config.sweep.countedGroup; });
+    const auto it =
+        std::find_if(config.bodies.begin(), config.bodies.end(),
+                     [&](const BodyGroup& b) { return b.name == config.sweep.countedGroup; });
     if (it == config.bodies.end()) {
       std::string list;
       for (const auto& b : config.bodies) list += (list.empty() ? "" : ", ") + b.name;
       at.fail("the name of a body group (" + list + ")", at.describe());
     }
-    if (!it->placement) at.fail("a group with random placement (explicit poses cannot grow)", at.describe());
+    if (!it->placement)
+      at.fail("a group with random placement (explicit poses cannot grow)", at.describe());
   }
   for (std::size_t i = 0; i < config.bodies.size(); ++i) {
     const BodyGroup& body = config.bodies[i];

@@ -29,7 +29,8 @@ bool parseWhole(std::string_view text, T& value) {
 }
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
   return s;
 }
 
@@ -40,7 +41,9 @@ std::string describeInterval(NumberLimits limits) {
          formatNumber(limits.max) + "]";
 }
 
-std::string describeLimits(NumberLimits limits) { return "a number in " + describeInterval(limits); }
+std::string describeLimits(NumberLimits limits) {
+  return "a number in " + describeInterval(limits);
+}
 
 std::string describeLimits(IntLimits limits) {
   return "an integer in [" + std::to_string(limits.min) + ", " + std::to_string(limits.max) + "]";
@@ -63,7 +66,8 @@ ConfigNode ConfigNode::child(const YAML::Node& node, std::string path) const {
 }
 
 ConfigNode ConfigNode::operator[](std::string_view key) const {
-  const std::string path = path_ == "(top level)" ? std::string(key) : path_ + "." + std::string(key);
+  const std::string path =
+      path_ == "(top level)" ? std::string(key) : path_ + "." + std::string(key);
   if (node_.IsMap()) {
     for (const auto& entry : node_) {
       if (!entry.first.IsScalar() || entry.first.Scalar() != key) continue;
@@ -81,7 +85,8 @@ std::vector<ConfigNode> ConfigNode::items(std::string_view expected) const {
   if (!node_.IsSequence()) fail(expected);
   std::vector<ConfigNode> out;
   std::size_t i = 0;
-  for (const auto& element : node_) out.push_back(child(element, path_ + "[" + std::to_string(i++) + "]"));
+  for (const auto& element : node_)
+    out.push_back(child(element, path_ + "[" + std::to_string(i++) + "]"));
   return out;
 }
 

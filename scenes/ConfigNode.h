@@ -2,14 +2,14 @@
 // Typed, checked reads from a parsed YAML document. Every failure is one InputError line:
 //   <file>:<line>: <key path>: expected <what>, got <what>
 // so the loader only says what each key must be.
+#include <yaml-cpp/yaml.h>
+
 #include <cstdint>
 #include <initializer_list>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <yaml-cpp/yaml.h>
 
 #include "scenes/ConfigLimits.h"
 #include "scenes/ScenarioConfig.h"

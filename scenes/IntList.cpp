@@ -61,7 +61,8 @@ std::vector<int> expandIntRange(int from, int to, int step) {
 }
 
 std::vector<int> parseIntList(std::string_view text) {
-  constexpr std::string_view kForm = "integers like 500,600 or a range from:to:step like 500:1200:100";
+  constexpr std::string_view kForm =
+      "integers like 500,600 or a range from:to:step like 500:1200:100";
   std::vector<int> values;
   if (trimmed(text).empty()) fail(text, kForm, "nothing");
   std::string_view rest = text;
@@ -85,8 +86,7 @@ std::vector<int> parseIntList(std::string_view text) {
       const int step = parseInt(text, parts[2]);
       if (step < 1) fail(text, "a range step >= 1", std::to_string(step));
       if (from > to) {
-        fail(text, "a range with from <= to",
-             std::to_string(from) + " > " + std::to_string(to));
+        fail(text, "a range with from <= to", std::to_string(from) + " > " + std::to_string(to));
       }
       const auto range = expandIntRange(from, to, step);
       values.insert(values.end(), range.begin(), range.end());

@@ -1,6 +1,10 @@
 #include "scenes/MeshLoader.h"
 
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 #include <array>
+#include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -8,10 +12,6 @@
 #include <string>
 #include <unordered_map>
 #include <vector>
-
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include "core/Errors.h"
 
@@ -40,7 +40,8 @@ class MeshMerger {
 
   void addNode(const aiNode& node, const aiMatrix4x4& parent) {
     const aiMatrix4x4 transform = parent * node.mTransformation;
-    for (unsigned m = 0; m < node.mNumMeshes; ++m) addMesh(*scene_.mMeshes[node.mMeshes[m]], transform);
+    for (unsigned m = 0; m < node.mNumMeshes; ++m)
+      addMesh(*scene_.mMeshes[node.mMeshes[m]], transform);
     for (unsigned c = 0; c < node.mNumChildren; ++c) addNode(*node.mChildren[c], transform);
   }
 
@@ -139,7 +140,8 @@ LoadedMesh loadMesh(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::error_code ec;
   // assimp calls an empty file "too small" or "empty" depending on the format; say what it means.
-  if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 && !ec) {
+  if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 &&
+      !ec) {
     throw InputError(name + ": mesh has no triangles (the file is empty)");
   }
   Assimp::Importer importer;
@@ -154,17 +156,18 @@ LoadedMesh loadMesh(const std::filesystem::path& file) {
   if (scene->mRootNode != nullptr) {
     merger.addNode(*scene->mRootNode, aiMatrix4x4());
   } else {
-    for (unsigned m = 0; m < scene->mNumMeshes; ++m) merger.addMesh(*scene->mMeshes[m], aiMatrix4x4());
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+      merger.addMesh(*scene->mMeshes[m], aiMatrix4x4());
   }
   LoadedMesh loaded = std::move(merger).finish();
   loaded.mesh.name = file.stem().string();
 
   if (loaded.mesh.triangles.empty()) {
-    throw InputError(name + ": mesh has no triangles" +
-                     (loaded.dropped.degenerateTriangles
-                          ? " (all " + std::to_string(loaded.dropped.degenerateTriangles) +
-                                " are degenerate)"
-                          : std::string()));
+    throw InputError(
+        name + ": mesh has no triangles" +
+        (loaded.dropped.degenerateTriangles
+             ? " (all " + std::to_string(loaded.dropped.degenerateTriangles) + " are degenerate)"
+             : std::string()));
   }
   if (loaded.dropped.degenerateTriangles > 0) {
     std::cerr << "warning: " << name << ": dropped " << loaded.dropped.degenerateTriangles

@@ -11,9 +11,10 @@ namespace cdb {
 Mesh makeTorus(double majorRadius, double minorRadius, int rings, int sides) {
   if (!(majorRadius > 0) || !(minorRadius > 0) || !(minorRadius < majorRadius) || rings < 3 ||
       sides < 3) {
-    throw InputError("torus: expected 0 < minor radius < major radius and rings, sides >= 3, got R=" +
-                     std::to_string(majorRadius) + " r=" + std::to_string(minorRadius) +
-                     " rings=" + std::to_string(rings) + " sides=" + std::to_string(sides));
+    throw InputError(
+        "torus: expected 0 < minor radius < major radius and rings, sides >= 3, got R=" +
+        std::to_string(majorRadius) + " r=" + std::to_string(minorRadius) +
+        " rings=" + std::to_string(rings) + " sides=" + std::to_string(sides));
   }
   Mesh mesh;
   mesh.name = "torus";
@@ -29,9 +30,7 @@ Mesh makeTorus(double majorRadius, double minorRadius, int rings, int sides) {
                                  float(ring * std::sin(u)));
     }
   }
-  const auto at = [&](int i, int j) {
-    return std::uint32_t((i % rings) * sides + (j % sides));
-  };
+  const auto at = [&](int i, int j) { return std::uint32_t((i % rings) * sides + (j % sides)); };
   // dP/du x dP/dv points into the tube, so each quad is wound v-first to face outwards.
   mesh.triangles.reserve(std::size_t(rings) * std::size_t(sides) * 2);
   for (int i = 0; i < rings; ++i) {

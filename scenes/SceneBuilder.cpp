@@ -48,20 +48,23 @@ SceneGeometry buildScene(const ScenarioConfig& config, const std::vector<std::st
 ScenarioConfig withObjectCount(const ScenarioConfig& config, int count) {
   const std::string& group = config.sweep.countedGroup;
   if (group.empty()) {
-    throw InputError(config.sourcePath + ": sweep.counted_group: expected a body group to set the " +
+    throw InputError(config.sourcePath +
+                     ": sweep.counted_group: expected a body group to set the " +
                      "object count of, got none");
   }
   if (count < limits::kObjectCount.min || count > limits::kObjectCount.max) {
-    throw InputError(config.sourcePath + ": object count of '" + group + "': expected an integer in [" +
-                     std::to_string(limits::kObjectCount.min) + ", " +
-                     std::to_string(limits::kObjectCount.max) + "], got " + std::to_string(count));
+    throw InputError(config.sourcePath + ": object count of '" + group +
+                     "': expected an integer in [" + std::to_string(limits::kObjectCount.min) +
+                     ", " + std::to_string(limits::kObjectCount.max) + "], got " +
+                     std::to_string(count));
   }
   ScenarioConfig out = config;
   const auto it = std::find_if(out.bodies.begin(), out.bodies.end(),
                                [&](const BodyGroup& b) { return b.name == group; });
   if (it == out.bodies.end()) {
-    throw InputError(config.sourcePath + ": sweep.counted_group: expected the name of a body group, got '" +
-                     group + "'");
+    throw InputError(config.sourcePath +
+                     ": sweep.counted_group: expected the name of a body group, got '" + group +
+                     "'");
   }
   if (!it->poses.empty()) {
     throw InputError(config.sourcePath + ": sweep.counted_group: expected a group with random " +

@@ -1,12 +1,12 @@
 #pragma once
 // A fresh directory under the system temp dir for files a test writes, removed afterwards.
+#include <unistd.h>
+
 #include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
-
-#include <unistd.h>
 
 namespace cdb::test {
 

@@ -1,16 +1,16 @@
 // Scenario configs: the YAML schema, its one-line errors, the command line's integer lists, the
 // shipped environments, and scenes built from configs.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 #include <string_view>
 
-#include <gtest/gtest.h>
-
+#include "ScratchDir.h"
+#include "TestAssets.h"
 #include "core/Errors.h"
 #include "scenes/ConfigLoader.h"
 #include "scenes/SceneBuilder.h"
-#include "ScratchDir.h"
-#include "TestAssets.h"
 
 namespace cdb {
 namespace {
@@ -193,7 +193,8 @@ TEST(ConfigLoader, AbsentKeysKeepTheDocumentedDefaults) {
 
 TEST(ConfigLoader, SingleIntegerIsAOneValueList) {
   ScratchDir dir;
-  const auto c = loadScenarioConfig(dir.write("one.yaml", minimal() + "sweep: {resolutions: 640}\n"));
+  const auto c =
+      loadScenarioConfig(dir.write("one.yaml", minimal() + "sweep: {resolutions: 640}\n"));
   EXPECT_EQ(c.sweep.resolutions, (std::vector<int>{640}));
 }
 
@@ -212,14 +213,16 @@ TEST_F(ConfigErrors, UnknownNestedKey) {
 }
 
 TEST_F(ConfigErrors, KeyOfAnotherMeshKindIsUnknown) {
-  expectError("environment: t\nbodies:\n  - name: p\n    mesh: {kind: plane, rings: 3}\n"
-              "    poses: [{}]\n",
-              4, "bodies[0].mesh.rings", "one of kind, plane_size, plane_cells");
+  expectError(
+      "environment: t\nbodies:\n  - name: p\n    mesh: {kind: plane, rings: 3}\n"
+      "    poses: [{}]\n",
+      4, "bodies[0].mesh.rings", "one of kind, plane_size, plane_cells");
 }
 
 TEST_F(ConfigErrors, DuplicateKey) {
-  expectError("environment: t\ndynamics:\n  frames: 10\n  frames: 20\nbodies:\n" + std::string(kTori),
-              4, "dynamics.frames", "each key once");
+  expectError(
+      "environment: t\ndynamics:\n  frames: 10\n  frames: 20\nbodies:\n" + std::string(kTori), 4,
+      "dynamics.frames", "each key once");
 }
 
 TEST_F(ConfigErrors, WrongTypeTextForNumber) {
@@ -282,9 +285,10 @@ TEST_F(ConfigErrors, NonFiniteNumberIsOutOfRange) {
 }
 
 TEST_F(ConfigErrors, CountOutOfRange) {
-  expectError("environment: t\nbodies:\n  - name: a\n    mesh: {kind: torus}\n    count: 0\n"
-              "    placement: {region_min: [0, 0, 0], region_max: [1, 1, 1]}\n",
-              5, "bodies[0].count", "an integer in [1, 100000], got 0");
+  expectError(
+      "environment: t\nbodies:\n  - name: a\n    mesh: {kind: torus}\n    count: 0\n"
+      "    placement: {region_min: [0, 0, 0], region_max: [1, 1, 1]}\n",
+      5, "bodies[0].count", "an integer in [1, 100000], got 0");
 }
 
 TEST_F(ConfigErrors, RestitutionOutOfRange) {
@@ -293,9 +297,10 @@ TEST_F(ConfigErrors, RestitutionOutOfRange) {
 }
 
 TEST_F(ConfigErrors, TorusTubeWiderThanItsRadius) {
-  expectError("environment: t\nbodies:\n  - name: a\n"
-              "    mesh: {kind: torus, major_radius: 0.3, minor_radius: 0.4}\n    poses: [{}]\n",
-              4, "bodies[0].mesh.minor_radius", "a minor radius below the major radius");
+  expectError(
+      "environment: t\nbodies:\n  - name: a\n"
+      "    mesh: {kind: torus, major_radius: 0.3, minor_radius: 0.4}\n    poses: [{}]\n",
+      4, "bodies[0].mesh.minor_radius", "a minor radius below the major radius");
 }
 
 TEST_F(ConfigErrors, MissingEnvironment) {
@@ -309,9 +314,10 @@ TEST_F(ConfigErrors, MissingBodies) {
 }
 
 TEST_F(ConfigErrors, MissingMeshKind) {
-  expectError("environment: t\nbodies:\n  - name: a\n    mesh: {major_radius: 1}\n"
-              "    poses: [{}]\n",
-              4, "bodies[0].mesh.kind", "torus, plane or asset (required), got no such key");
+  expectError(
+      "environment: t\nbodies:\n  - name: a\n    mesh: {major_radius: 1}\n"
+      "    poses: [{}]\n",
+      4, "bodies[0].mesh.kind", "torus, plane or asset (required), got no such key");
 }
 
 TEST_F(ConfigErrors, UnknownMeshKind) {
@@ -320,8 +326,8 @@ TEST_F(ConfigErrors, UnknownMeshKind) {
 }
 
 TEST_F(ConfigErrors, MissingAssetStem) {
-  expectError("environment: t\nbodies:\n  - name: a\n    mesh: {kind: asset}\n    poses: [{}]\n",
-              4, "bodies[0].mesh.asset", "(required), got no such key");
+  expectError("environment: t\nbodies:\n  - name: a\n    mesh: {kind: asset}\n    poses: [{}]\n", 4,
+              "bodies[0].mesh.asset", "(required), got no such key");
 }
 
 TEST_F(ConfigErrors, NeitherPosesNorPlacement) {
@@ -341,7 +347,8 @@ TEST_F(ConfigErrors, MissingFile) {
 }
 
 TEST_F(ConfigErrors, EmptyFile) {
-  expectError("", 1, "(top level)", "a scenario map with environment and bodies, got an empty file");
+  expectError("", 1, "(top level)",
+              "a scenario map with environment and bodies, got an empty file");
 }
 
 TEST_F(ConfigErrors, CommentsOnlyFileIsEmpty) {
@@ -367,9 +374,10 @@ TEST_F(ConfigErrors, MalformedYamlGivesTheParsersMessageAndLine) {
 }
 
 TEST_F(ConfigErrors, CountDisagreesWithExplicitPoses) {
-  expectError("environment: t\nbodies:\n  - name: planes\n    mesh: {kind: plane}\n    count: 2\n"
-              "    poses:\n      - {position: [0, 0, 0]}\n      - {}\n      - {}\n",
-              6, "bodies[0].poses", "2 poses (count: 2), got 3");
+  expectError(
+      "environment: t\nbodies:\n  - name: planes\n    mesh: {kind: plane}\n    count: 2\n"
+      "    poses:\n      - {position: [0, 0, 0]}\n      - {}\n      - {}\n",
+      6, "bodies[0].poses", "2 poses (count: 2), got 3");
 }
 
 TEST_F(ConfigErrors, RangeFromAboveTo) {
@@ -418,35 +426,40 @@ TEST_F(ConfigErrors, CountedGroupNeedsObjectCounts) {
 }
 
 TEST_F(ConfigErrors, CountedGroupMustBePlacedRandomly) {
-  expectError("environment: t\nbodies:\n  - {name: p, mesh: {kind: plane}, poses: [{}]}\n"
-              "sweep: {counted_group: p, object_counts: [1, 2]}\n",
-              4, "sweep.counted_group", "a group with random placement");
+  expectError(
+      "environment: t\nbodies:\n  - {name: p, mesh: {kind: plane}, poses: [{}]}\n"
+      "sweep: {counted_group: p, object_counts: [1, 2]}\n",
+      4, "sweep.counted_group", "a group with random placement");
 }
 
 TEST_F(ConfigErrors, RegionMaxBelowRegionMin) {
-  expectError("environment: t\nbodies:\n  - name: a\n    mesh: {kind: torus}\n    placement:\n"
-              "      region_min: [0, 0, 0]\n      region_max: [1, -1, 1]\n",
-              7, "bodies[0].placement.region_max", "each coordinate >= region_min's");
+  expectError(
+      "environment: t\nbodies:\n  - name: a\n    mesh: {kind: torus}\n    placement:\n"
+      "      region_min: [0, 0, 0]\n      region_max: [1, -1, 1]\n",
+      7, "bodies[0].placement.region_max", "each coordinate >= region_min's");
 }
 
 TEST_F(ConfigErrors, SpeedMaxBelowSpeedMin) {
-  expectError("environment: t\nbodies:\n  - name: a\n    mesh: {kind: torus}\n    placement:\n"
-              "      region_min: [0, 0, 0]\n      region_max: [9, 9, 9]\n      speed_min: 2\n"
-              "      speed_max: 1\n",
-              9, "bodies[0].placement.speed_max", "speed_max >= speed_min");
+  expectError(
+      "environment: t\nbodies:\n  - name: a\n    mesh: {kind: torus}\n    placement:\n"
+      "      region_min: [0, 0, 0]\n      region_max: [9, 9, 9]\n      speed_min: 2\n"
+      "      speed_max: 1\n",
+      9, "bodies[0].placement.speed_max", "speed_max >= speed_min");
 }
 
 TEST_F(ConfigErrors, RegionOutsideTheContainer) {
-  expectError("environment: t\ndynamics: {container_half_extent: 5}\nbodies:\n  - name: a\n"
-              "    mesh: {kind: torus}\n    placement:\n      region_min: [-5, -4, -4]\n"
-              "      region_max: [4, 4, 4]\n",
-              7, "bodies[0].placement.region_min", "fit inside the container (half extent 5)");
+  expectError(
+      "environment: t\ndynamics: {container_half_extent: 5}\nbodies:\n  - name: a\n"
+      "    mesh: {kind: torus}\n    placement:\n      region_min: [-5, -4, -4]\n"
+      "      region_max: [4, 4, 4]\n",
+      7, "bodies[0].placement.region_min", "fit inside the container (half extent 5)");
 }
 
 TEST_F(ConfigErrors, TooManyBodiesForTheRegion) {
-  expectError("environment: t\nbodies:\n  - name: a\n    mesh: {kind: torus}\n    count: 100\n"
-              "    placement: {region_min: [0, 0, 0], region_max: [1, 1, 1]}\n",
-              6, "bodies[0].placement", "a region where 100 bodies");
+  expectError(
+      "environment: t\nbodies:\n  - name: a\n    mesh: {kind: torus}\n    count: 100\n"
+      "    placement: {region_min: [0, 0, 0], region_max: [1, 1, 1]}\n",
+      6, "bodies[0].placement", "a region where 100 bodies");
   // The sweep's largest count is what has to fit.
   expectError(minimal() + "sweep: {counted_group: tori, object_counts: [3, 5000]}\n", 3,
               "bodies[0].placement", "a region where 5000 bodies");
@@ -473,8 +486,7 @@ TEST(ParseIntList, RejectsMalformedText) {
     }
     return "<no error>";
   };
-  EXPECT_EQ(messageOf("500,abc"),
-            "'500,abc': expected an integer, got 'abc'");
+  EXPECT_EQ(messageOf("500,abc"), "'500,abc': expected an integer, got 'abc'");
   EXPECT_NE(messageOf("").find("expected integers like 500,600"), std::string::npos);
   EXPECT_NE(messageOf("500,").find("got an empty item"), std::string::npos);
   EXPECT_NE(messageOf("500:1200").find("expected a range from:to:step, got '500:1200'"),
@@ -526,8 +538,9 @@ TEST(SceneBuilder, WithObjectCountNeedsACountedGroup) {
 
 TEST(SceneBuilder, MissingAssetIsAnInputError) {
   ScratchDir dir;
-  const auto config = loadScenarioConfig(dir.write(
-      "s.yaml", "environment: t\nbodies:\n  - {name: d, mesh: {kind: asset, asset: nothing_here}, "
+  const auto config = loadScenarioConfig(
+      dir.write("s.yaml",
+                "environment: t\nbodies:\n  - {name: d, mesh: {kind: asset, asset: nothing_here}, "
                 "poses: [{}]}\n"));
   try {
     (void)buildScene(config, {dir.path().string()});
@@ -539,10 +552,12 @@ TEST(SceneBuilder, MissingAssetIsAnInputError) {
 
 TEST(SceneBuilder, AssetIsNormalisedToItsSize) {
   ScratchDir dir;
-  dir.write("assets/wedge.obj", "v 10 10 10\nv 14 10 10\nv 10 12 10\nv 10 10 11\n"
-                                "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
-  const auto config = loadScenarioConfig(dir.write(
-      "s.yaml", "environment: t\nbodies:\n  - {name: w, mesh: {kind: asset, asset: wedge, "
+  dir.write("assets/wedge.obj",
+            "v 10 10 10\nv 14 10 10\nv 10 12 10\nv 10 10 11\n"
+            "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const auto config = loadScenarioConfig(
+      dir.write("s.yaml",
+                "environment: t\nbodies:\n  - {name: w, mesh: {kind: asset, asset: wedge, "
                 "asset_size: 2}, poses: [{}]}\n"));
   const SceneGeometry scene = buildScene(config, {(dir.path() / "assets").string()});
   ASSERT_EQ(scene.meshes.size(), 1u);

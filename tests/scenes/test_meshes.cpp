@@ -1,26 +1,29 @@
-// Procedural meshes, the mesh loader (assimp) with its checks and normalisation, and the asset path.
+// Procedural meshes, the mesh loader (assimp) with its checks and normalisation, and the asset
+// path.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <utility>
 
-#include <gtest/gtest.h>
-
+#include "ScratchDir.h"
+#include "TestAssets.h"
 #include "core/Errors.h"
 #include "scenes/AssetPath.h"
 #include "scenes/MeshLoader.h"
 #include "scenes/ProceduralMeshes.h"
-#include "ScratchDir.h"
-#include "TestAssets.h"
 
 namespace cdb {
 namespace {
 
-using test::ScratchDir;
 using test::ScopedEnv;
+using test::ScratchDir;
 
-Eigen::Vector3d vertex(const Mesh& mesh, std::uint32_t i) { return mesh.vertices[i].cast<double>(); }
+Eigen::Vector3d vertex(const Mesh& mesh, std::uint32_t i) {
+  return mesh.vertices[i].cast<double>();
+}
 
 Eigen::Vector3d normalOf(const Mesh& mesh, const Triangle& t) {
   return (vertex(mesh, t[1]) - vertex(mesh, t[0])).cross(vertex(mesh, t[2]) - vertex(mesh, t[0]));
