@@ -5,8 +5,9 @@
 // draws them in the reverse order, which is again far to near for that view. Both passes share
 // one depth clear. An object is tested in pass 1 against every object of larger Min and in pass 2
 // against every object of smaller Min, i.e. against all others, so CULLIDE's argument holds: fully
-// visible in both passes means it touches no other object. Disjoint objects that overlap in the
-// image are then seen in front of what was drawn before them and are pruned (Figure 3.2).
+// visible in both passes means it touches no other object. Objects whose boxes are apart along the
+// view are each in front of everything drawn before them, so they are pruned even where their
+// images overlap, which CULLIDE's fixed order cannot do (Figure 3.2).
 // Object level along x, y, z, then triangle level on the objects left; one set comes out.
 #include <array>
 #include <cstdint>
