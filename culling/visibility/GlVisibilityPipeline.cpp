@@ -1,6 +1,7 @@
 #include "culling/visibility/GlVisibilityPipeline.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -88,11 +89,9 @@ void GlVisibilityPipeline::applyPassState() {
   if (conservative_) {
     glUseProgram(conservativeProgram_.get());
     glUniformMatrix4fv(u::kWorldTo, 1, GL_FALSE, worldToScreen.data());
-    const double scale = setup_.depthFar - setup_.depthNear;
-    glUniform4f(u::kDepthMap, static_cast<float>(setup_.depthNear), static_cast<float>(scale),
-                static_cast<float>(scale < 0 ? -setup_.depthEpsilon : setup_.depthEpsilon), 0.f);
-    glUniform2f(u::kDepthClamp, static_cast<float>(std::min(setup_.depthNear, setup_.depthFar)),
-                static_cast<float>(std::max(setup_.depthNear, setup_.depthFar)));
+    // The epsilon is in stored-depth units; the shader works in view depth t.
+    glUniform1f(u::kDepthEpsilon,
+                static_cast<float>(setup_.depthEpsilon / std::abs(setup_.depthFar - setup_.depthNear)));
     glUniform1f(u::kGrowPx, static_cast<float>(0.5 + setup_.coverageMarginPx));
     glUniform1f(u::kResolution, static_cast<float>(setup_.resolution));
   } else {

@@ -27,14 +27,23 @@ void main() {}
 )";
 
 // Conservative rasterisation without a geometry shader (slow on llvmpipe): each triangle is drawn
-// as six vertices, and every one of them pulls the whole triangle from the storage buffers. The
-// covered region is the triangle dilated by a pixel square grown by the margin g (the Minkowski
-// sum), which holds the centre of every pixel the triangle touches. It is the triangle's bounding
-// box grown by g intersected with three slabs, one per edge: the triangle's extent along the edge
-// normal grown by the square's support g (|nx| + |ny|). The slabs need no orientation, so edge-on
-// and degenerate triangles are handled alike. The vertices span a region containing it, the
-// grown box or the triangle with its edges pushed out by g (whichever is smaller: the pushed-out
-// triangle of a sliver is huge), and the fragment shader discards what lies outside it.
+// as three vertices, and every one of them pulls the whole triangle from the storage buffers.
+//
+// Coverage: the triangle dilated by a pixel square grown by the margin g (the Minkowski sum) holds
+// the centre of every pixel the triangle touches. It is the triangle's bounding box grown by g
+// intersected with three slabs, one per edge: the triangle's extent along the edge normal grown by
+// the square's support g (|nx| + |ny|). Slabs need no orientation, so edge-on and degenerate
+// triangles are handled alike. The vertices span a region containing it (the triangle with its
+// edges pushed out, or for slivers, whose pushed-out triangle is huge, a triangle holding the box)
+// and the fragment shader discards what lies outside it.
+//
+// Depth: orthographic depth t is linear in screen space, so over a grown pixel square it stays
+// within g (|dt/dx| + |dt/dy|) of its value at the centre. A test draws the plane moved back by
+// that much, a write the plane moved forward, or the triangle's farthest (test) or nearest (write)
+// vertex depth where that is tighter on average (steep and degenerate triangles); then a depth
+// epsilon toward "occluded". Either is a valid bound of the triangle's depth anywhere in the pixel,
+// and being linear it is interpolated by the rasteriser: no gl_FragDepth, so early depth tests
+// stay on.
 constexpr const char* kConservativeVertex = R"(#version 450 core
 layout(std430, binding = 0) readonly buffer ModelMatrices { mat4 uModels[]; };
 layout(std430, binding = 1) readonly buffer Positions { float uPositions[]; };
@@ -42,12 +51,12 @@ layout(std430, binding = 2) readonly buffer Indices { uint uIndices[]; };
 layout(location = 0) uniform int uObject;
 layout(location = 1) uniform mat4 uLocal;
 layout(location = 2) uniform mat4 uWorldToScreen;
-layout(location = 7) uniform float uGrow;
-layout(location = 8) uniform float uResolution;
-flat out vec4 vPlane;     // t at the reference point, dt/dx, dt/dy, extent of t over a grown pixel
-flat out vec4 vRefRange;  // reference point (pixels), smallest and largest vertex t
-flat out vec4 vBox;       // grown bounding box: min x, min y, max x, max y
-flat out vec4 vSlab[3];   // unit edge normal, allowed range of dot(normal, pixel centre)
+layout(location = 4) uniform float uSide;          // +1 test (farthest), -1 write (nearest)
+layout(location = 5) uniform float uDepthEpsilon;  // in units of t
+layout(location = 6) uniform float uGrow;
+layout(location = 7) uniform float uResolution;
+flat out vec4 vBox;      // grown bounding box: min x, min y, max x, max y
+flat out vec4 vSlab[3];  // unit edge normal, allowed range of dot(normal, pixel centre)
 
 vec2 meet(vec3 a, vec3 b) {  // intersection of the lines dot(a.xy, x) = a.z and dot(b.xy, x) = b.z
   float det = a.x * b.y - a.y * b.x;
@@ -71,13 +80,13 @@ void main() {
   vBox = vec4(lo, hi);
 
   vec3 outward[3];  // pushed-out edge lines dot(n, x) = d, n pointing away from the triangle
-  bool usable = true;
+  bool pushable = true;
   for (int i = 0; i < 3; ++i) {
     vec2 e = p[(i + 1) % 3] - p[i];
     float len = length(e);
     if (len < 1e-6) {  // a point-like edge: the other edges and the box bound it
       vSlab[i] = vec4(1.0, 0.0, -1e30, 1e30);
-      usable = false;
+      pushable = false;
       continue;
     }
     vec2 n = vec2(e.y, -e.x) / len;
@@ -86,67 +95,57 @@ void main() {
     float side = dot(n, p[(i + 2) % 3]) - base;  // where the opposite vertex lies
     vSlab[i] = vec4(n, base + min(side, 0.0) - off, base + max(side, 0.0) + off);
     outward[i] = side < 0.0 ? vec3(n, base + off) : vec3(-n, -base + off);
-    usable = usable && abs(side) > 1e-3;
+    pushable = pushable && abs(side) > 1e-3;
   }
 
-  // Depth is linear in screen space (orthographic). Its extreme over a grown pixel square is the
-  // value at the centre -/+ g (|dt/dx| + |dt/dy|). Near-degenerate triangles fall back on the
-  // vertex range, which bounds their depth anyway.
+  // The pushed-out triangle when it is not much larger than the box, else one holding the box.
+  vec2 size = hi - lo;
+  vec2 q;
+  bool pushed = false;
+  if (pushable) {
+    vec2 c0 = meet(outward[2], outward[0]);
+    vec2 c1 = meet(outward[0], outward[1]);
+    vec2 c2 = meet(outward[1], outward[2]);
+    vec2 f1 = c1 - c0;
+    vec2 f2 = c2 - c0;
+    float area = 0.5 * abs(f1.x * f2.y - f1.y * f2.x);
+    vec2 chosen = corner == 0 ? c0 : (corner == 1 ? c1 : c2);
+    pushed = area < 2.0 * size.x * size.y && !isnan(area) && !isinf(area);
+    q = chosen;
+  }
+  if (!pushed) {
+    vec2 legs = 2.0 * size + 1.0;  // the box's far corner is then well inside
+    q = corner == 0 ? lo : (corner == 1 ? vec2(lo.x + legs.x, lo.y) : vec2(lo.x, lo.y + legs.y));
+  }
+
   float tmin = min(min(t.x, t.y), t.z);
   float tmax = max(max(t.x, t.y), t.z);
+  float tBound = uSide > 0.0 ? tmax : tmin;
+  float tq = tBound;
   vec2 e1 = p[1] - p[0];
   vec2 e2 = p[2] - p[0];
   float det = e1.x * e2.y - e1.y * e2.x;
-  vPlane = vec4(0.5 * (tmin + tmax), 0.0, 0.0, 2.0);
   if (abs(det) > 1e-6 * (dot(e1, e1) + dot(e2, e2))) {
     float dt1 = t.y - t.x;
     float dt2 = t.z - t.x;
     float a = (dt1 * e2.y - dt2 * e1.y) / det;
     float b = (dt2 * e1.x - dt1 * e2.x) / det;
-    float extent = uGrow * (abs(a) + abs(b));
-    if (!isinf(extent) && !isnan(extent)) vPlane = vec4(t.x, a, b, extent);
+    float shift = uSide * uGrow * (abs(a) + abs(b));
+    float meanMoved = (t.x + t.y + t.z) / 3.0 + shift;
+    if (!isinf(shift) && !isnan(shift) && uSide * (tBound - meanMoved) > 0.0) {
+      vec2 dq = q - p[0];
+      tq = t.x + a * dq.x + b * dq.y + shift;
+    }
   }
-  vRefRange = vec4(p[0], tmin, tmax);
-
-  // The pushed-out triangle when it is smaller than the box, else a right triangle holding the box.
-  vec2 q;
-  vec2 size = hi - lo;
-  bool useTriangle = false;
-  vec2 c0, c1, c2;
-  if (usable) {
-    c0 = meet(outward[2], outward[0]);
-    c1 = meet(outward[0], outward[1]);
-    c2 = meet(outward[1], outward[2]);
-    vec2 f1 = c1 - c0;
-    vec2 f2 = c2 - c0;
-    float area = 0.5 * abs(f1.x * f2.y - f1.y * f2.x);
-    useTriangle = area < 2.0 * size.x * size.y && !any(isnan(vec4(c0, c1))) && !any(isinf(vec4(c0, c1))) &&
-                  !any(isnan(c2)) && !any(isinf(c2));
-  }
-  if (useTriangle) {
-    q = corner == 0 ? c0 : (corner == 1 ? c1 : c2);
-  } else {
-    // Legs of twice the box plus a pixel, so the box's far corner is well inside.
-    vec2 legs = 2.0 * size + 1.0;
-    q = corner == 0 ? lo : (corner == 1 ? vec2(lo.x + legs.x, lo.y) : vec2(lo.x, lo.y + legs.y));
-  }
-  // z is unused: the fragment shader writes the depth, and z = 0 is never clipped.
-  gl_Position = vec4(q / uResolution * 2.0 - 1.0, 0.0, 1.0);
+  tq += uSide * uDepthEpsilon;
+  // NDC z = 2 t - 1; depth clamping keeps the result inside the pass' part of the depth range.
+  gl_Position = vec4(q / uResolution * 2.0 - 1.0, 2.0 * tq - 1.0, 1.0);
 }
 )";
 
-// Keeps the pixels whose centre lies in the dilated triangle, and writes the nearest depth of the
-// triangle over the grown pixel (depth writes) or the farthest (tests), each clamped to the
-// triangle's own vertex range (both bound the depth of any of its points in the pixel), moved by
-// the epsilon toward "occluded", and kept inside the pass' part of the depth range.
 constexpr const char* kConservativeFragment = R"(#version 450 core
-flat in vec4 vPlane;
-flat in vec4 vRefRange;
 flat in vec4 vBox;
 flat in vec4 vSlab[3];
-layout(location = 4) uniform vec4 uDepthMap;
-layout(location = 5) uniform vec2 uDepthClamp;
-layout(location = 6) uniform float uSide;
 void main() {
   vec2 x = gl_FragCoord.xy;
   bool inside = all(greaterThanEqual(x, vBox.xy)) && all(lessThanEqual(x, vBox.zw));
@@ -155,11 +154,6 @@ void main() {
     inside = inside && s >= vSlab[i].z && s <= vSlab[i].w;
   }
   if (!inside) discard;
-  vec2 d = x - vRefRange.xy;
-  float centre = vPlane.x + vPlane.y * d.x + vPlane.z * d.y;
-  float t = uSide > 0.0 ? min(centre + vPlane.w, vRefRange.w) : max(centre - vPlane.w, vRefRange.z);
-  float z = uDepthMap.x + uDepthMap.y * t + uSide * uDepthMap.z;
-  gl_FragDepth = clamp(z, uDepthClamp.x, uDepthClamp.y);
 }
 )";
 
