@@ -12,7 +12,7 @@ namespace cdb {
 
 namespace u = occlusion_uniform;
 
-GlVisibilityPipeline::GlVisibilityPipeline(HeadlessGlContext& context) {
+GlVisibilityPipeline::GlVisibilityPipeline(HeadlessGlContext& context) : context_(&context) {
   context.makeCurrent();
   rawProgram_ = makeRawOcclusionProgram();
   conservativeProgram_ = makeConservativeOcclusionProgram();
@@ -26,6 +26,14 @@ GlVisibilityPipeline::GlVisibilityPipeline(HeadlessGlContext& context) {
   // Depth only: nothing is shaded into colour.
   glNamedFramebufferDrawBuffer(framebuffer_.get(), GL_NONE);
   glNamedFramebufferReadBuffer(framebuffer_.get(), GL_NONE);
+}
+
+GlVisibilityPipeline::~GlVisibilityPipeline() {
+  try {
+    context_->makeCurrent();
+  } catch (const RunError&) {
+    // The context is gone or unusable: its objects went with it.
+  }
 }
 
 void GlVisibilityPipeline::setConservative(bool conservative) {
@@ -78,7 +86,8 @@ void GlVisibilityPipeline::applyPassState() {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_.get());
   glViewport(0, 0, setup_.resolution, setup_.resolution);
   glEnable(GL_DEPTH_TEST);
-  // Geometry beyond the near or far plane is clamped to it instead of being clipped away.
+  // Depths are clamped into the pass' part of the range: geometry beyond the near or far plane is
+  // kept instead of clipped away, and conservative epsilons never reach the other pass' half.
   glEnable(GL_DEPTH_CLAMP);
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);

@@ -26,8 +26,12 @@ enum class DrawRole : std::uint8_t { None, Test, Write };
 
 class GlVisibilityPipeline {
  public:
-  // Compiles the programs in `context` and makes it current.
+  // Compiles the programs in `context` and makes it current; `context` must outlive the pipeline.
   explicit GlVisibilityPipeline(HeadlessGlContext& context);
+  // Makes the context current again so that the GL objects are deleted where they live.
+  ~GlVisibilityPipeline();
+  GlVisibilityPipeline(const GlVisibilityPipeline&) = delete;
+  GlVisibilityPipeline& operator=(const GlVisibilityPipeline&) = delete;
 
   void setConservative(bool conservative);
   void setRawDepthOffset(double ndcOffset);
@@ -90,6 +94,7 @@ class GlVisibilityPipeline {
   }
   void ensureTarget(int resolution);
 
+  HeadlessGlContext* context_;
   GlProgramName rawProgram_, conservativeProgram_;
   GlFramebuffer framebuffer_;
   GlRenderbuffer depth_;
