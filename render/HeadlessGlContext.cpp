@@ -3,11 +3,13 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/Errors.h"
@@ -94,13 +96,18 @@ struct Candidate {
   void* native = nullptr;  // EGLDeviceEXT for the device platform
 };
 
-bool isSoftwareDevice(EGLDeviceEXT device) {
+// Lower is preferred: NVIDIA (CUDA-capable), then other devices with a DRM render node, then other
+// hardware, then Mesa's software rasteriser.
+int deviceRank(EGLDeviceEXT device) {
   auto queryString = eglProc<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
   const char* ext = queryString != nullptr ? queryString(device, EGL_EXTENSIONS) : nullptr;
-  return hasExtension(ext, "EGL_MESA_device_software");
+  if (hasExtension(ext, "EGL_MESA_device_software")) return 3;
+  if (hasExtension(ext, "EGL_NV_device_cuda")) return 0;
+  if (hasExtension(ext, "EGL_EXT_device_drm_render_node")) return 1;
+  return 2;
 }
 
-// EGL devices split into hardware and software (Mesa's llvmpipe device), each in EGL's order.
+// EGL devices split into hardware (best first) and software (Mesa's llvmpipe device).
 void enumerateDevices(std::vector<EGLDeviceEXT>& hardware, std::vector<EGLDeviceEXT>& software) {
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!hasExtension(client, "EGL_EXT_platform_device")) return;
@@ -111,7 +118,11 @@ void enumerateDevices(std::vector<EGLDeviceEXT>& hardware, std::vector<EGLDevice
   std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
   if (queryDevices(count, devices.data(), &count) != EGL_TRUE) return;
   devices.resize(static_cast<std::size_t>(count));
-  for (EGLDeviceEXT d : devices) (isSoftwareDevice(d) ? software : hardware).push_back(d);
+  std::vector<std::pair<int, EGLDeviceEXT>> ranked;
+  for (EGLDeviceEXT d : devices) ranked.emplace_back(deviceRank(d), d);
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [rank, d] : ranked) (rank == 3 ? software : hardware).push_back(d);
 }
 
 std::vector<Candidate> candidatesFor(GlPlatform platform) {
@@ -197,14 +208,13 @@ std::string glString(GLenum name) {
   return s != nullptr ? s : "";
 }
 
-std::string triedList(const std::vector<Candidate>& candidates) {
-  std::string out;
-  for (const auto& c : candidates) {
-    if (out.find(c.platform) != std::string::npos) continue;
-    if (!out.empty()) out += ", ";
-    out += c.platform;
+std::string_view triedList(GlPlatform platform) {
+  switch (platform) {
+    case GlPlatform::Auto: return "device, surfaceless, default";
+    case GlPlatform::Device: return "device";
+    case GlPlatform::Surfaceless: return "surfaceless";
   }
-  return out;
+  return "";
 }
 
 }  // namespace
@@ -305,8 +315,8 @@ HeadlessGlContext::HeadlessGlContext(GlPlatform platform) : egl_(std::make_uniqu
     return;
   }
   if (!anyDisplay) {
-    throw RunError("no EGL display could be opened (tried " + triedList(candidates) + "): " +
-                   kInstallHint);
+    throw RunError("no EGL display could be opened (tried " + std::string(triedList(platform)) +
+                   "): " + kInstallHint);
   }
   throw RunError(versionProblem +
                  ": use a GPU driver with OpenGL 4.5, or Mesa >= 20.3 whose llvmpipe provides it on "

@@ -1,5 +1,7 @@
 #include "render/HeadlessGlContext.h"
 
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include <gtest/gtest.h>
@@ -61,6 +63,42 @@ TEST(HeadlessGlContext, TwoContextsCoexist) {
   }
   shared.makeCurrent();
   EXPECT_NE(glGetString(GL_RENDERER), nullptr);
+}
+
+// Runs `platform` in a fresh child process with `variable` set (EGL reads its environment once,
+// at start-up) and expects a one-line RunError that starts with `expected`.
+void expectOpenFailure(const char* variable, const char* value, GlPlatform platform,
+                       const std::string& expected) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  setenv(variable, value, 1);
+  EXPECT_EXIT(
+      {
+        try {
+          HeadlessGlContext context(platform);
+          std::exit(3);
+        } catch (const RunError& e) {
+          const std::string what = e.what();
+          std::fprintf(stderr, "%s\n", what.c_str());
+          std::exit(what.rfind(expected, 0) == 0 && what.find('\n') == std::string::npos ? 0 : 4);
+        }
+      },
+      testing::ExitedWithCode(0), "");  // exit code 0: the child matched `expected`
+  unsetenv(variable);
+}
+
+TEST(HeadlessGlContextDeathTest, NoDisplayIsAOneLineRunErrorWithAHint) {
+  // glvnd then finds no EGL vendor at all.
+  expectOpenFailure("__EGL_VENDOR_LIBRARY_FILENAMES", "/nonexistent/egl_vendor.json", GlPlatform::Auto,
+                    "no EGL display could be opened (tried device, surfaceless, default): install");
+}
+
+TEST(HeadlessGlContextDeathTest, OldOpenGlIsAOneLineRunError) {
+  // The death-test child re-runs this body with the override set; only the parent looks at the GL.
+  const bool inChild = std::getenv("MESA_GL_VERSION_OVERRIDE") != nullptr;
+  if (!inChild && test::sharedGlContext().info().glVersion.find("Mesa") == std::string::npos)
+    GTEST_SKIP() << "needs Mesa, whose version override stands in for an old driver";
+  expectOpenFailure("MESA_GL_VERSION_OVERRIDE", "3.3", GlPlatform::Surfaceless,
+                    "OpenGL 4.5 core is not available (got 3.3");
 }
 
 TEST(GlPlatformParse, KnownNames) {
