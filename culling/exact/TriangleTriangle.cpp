@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "culling/exact/OrientationPredicates.h"
 
 namespace cdb {

@@ -4,7 +4,7 @@
 // (Journal of Graphics Tools 8(1), 2003), with every orientation sign computed exactly.
 #include <array>
 
-#include <Eigen/Geometry>
+#include <Eigen/Core>
 
 namespace cdb {
 

@@ -11,6 +11,13 @@
 
 namespace cdb::testing {
 
+// Unoptimised (debug, sanitizer) builds run the scene tests on fewer frames and seeds.
+#ifdef NDEBUG
+inline constexpr int kRepeats = 3;
+#else
+inline constexpr int kRepeats = 1;
+#endif
+
 inline Pose randomPose(std::mt19937_64& rng, double boxSide) {
   std::uniform_real_distribution<double> u(0.0, boxSide);
   std::normal_distribution<double> g;

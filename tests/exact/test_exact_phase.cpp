@@ -54,8 +54,8 @@ PotentiallyCollidingSets overlapComponents(const SceneGeometry& scene, const std
 }
 
 TEST(ExactPhase, MatchesGroundTruthWithOneSetOfAllTori) {
-  for (std::uint64_t seed : {11u, 12u, 13u}) {
-    const auto s = testing::randomTori(60, 3.0, 3, seed);
+  for (std::uint64_t seed = 11; seed < 11 + testing::kRepeats; ++seed) {
+    const auto s = testing::randomTori(60, 3.0, testing::kRepeats, seed);
     const GroundTruth truth(s.scene);
     ExactPhase exact(s.scene);  // one instance over all frames: buffers are reused
     const auto sets = oneSetOfAll(s.scene.objectCount());
@@ -72,7 +72,7 @@ TEST(ExactPhase, MatchesGroundTruthWithOneSetOfAllTori) {
 }
 
 TEST(ExactPhase, MatchesGroundTruthWithSetsFromBoxOverlap) {
-  const auto s = testing::randomTori(80, 8.0, 3, 21);
+  const auto s = testing::randomTori(80, 8.0, testing::kRepeats, 21);
   const GroundTruth truth(s.scene);
   ExactPhase exact(s.scene);
   for (const auto& poses : s.frames) {
@@ -89,7 +89,7 @@ TEST(ExactPhase, MatchesGroundTruthWithSetsFromBoxOverlap) {
 TEST(ExactPhase, MatchesGroundTruthWithTriangleSubsets) {
   // Each member keeps only the triangles whose world box reaches another object's box: a valid
   // restriction, so nothing may be lost. Small and large subsets take different paths.
-  const auto s = testing::randomTori(50, 3.0, 3, 31);
+  const auto s = testing::randomTori(50, 3.0, testing::kRepeats, 31);
   const GroundTruth truth(s.scene);
   ExactPhase exact(s.scene);
   for (const auto& poses : s.frames) {

@@ -30,8 +30,8 @@ CollisionReport bruteForce(const SceneGeometry& scene, const std::vector<Pose>& 
 }
 
 TEST(GroundTruth, MatchesBruteForceOnSmallToriScenes) {
-  for (std::uint64_t seed : {1u, 2u, 3u}) {
-    const auto s = testing::randomTori(8, 1.6, 3, seed, 12, 8);
+  for (std::uint64_t seed = 1; seed < 1 + testing::kRepeats; ++seed) {
+    const auto s = testing::randomTori(8, 1.6, testing::kRepeats, seed, 12, 8);
     const GroundTruth truth(s.scene);
     for (const auto& poses : s.frames) {
       const CollisionReport expected = bruteForce(s.scene, poses);

@@ -3,6 +3,7 @@
 #include <limits>
 #include <random>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "ExactReference.h"
