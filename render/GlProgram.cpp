@@ -18,10 +18,14 @@ std::string oneLine(std::string log) {
 
 std::string_view stageName(GLenum type) {
   switch (type) {
-    case GL_VERTEX_SHADER: return "vertex";
-    case GL_GEOMETRY_SHADER: return "geometry";
-    case GL_FRAGMENT_SHADER: return "fragment";
-    default: return "shader";
+    case GL_VERTEX_SHADER:
+      return "vertex";
+    case GL_GEOMETRY_SHADER:
+      return "geometry";
+    case GL_FRAGMENT_SHADER:
+      return "fragment";
+    default:
+      return "shader";
   }
 }
 
@@ -58,7 +62,8 @@ GlProgramName linkProgram(std::string_view label, std::initializer_list<ShaderSt
     glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &size);
     std::string log(static_cast<std::size_t>(size > 0 ? size : 1), '\0');
     glGetProgramInfoLog(program.get(), size, nullptr, log.data());
-    throw RunError("the program '" + std::string(label) + "' does not link: " + oneLine(log.c_str()));
+    throw RunError("the program '" + std::string(label) +
+                   "' does not link: " + oneLine(log.c_str()));
   }
   return program;
 }

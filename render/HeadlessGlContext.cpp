@@ -27,7 +27,8 @@ constexpr int kMinor = 5;
 bool hasExtension(const char* list, std::string_view name) {
   if (list == nullptr) return false;
   const std::string_view all(list);
-  for (std::size_t pos = 0; (pos = all.find(name, pos)) != std::string_view::npos; pos += name.size()) {
+  for (std::size_t pos = 0; (pos = all.find(name, pos)) != std::string_view::npos;
+       pos += name.size()) {
     const bool startOk = pos == 0 || all[pos - 1] == ' ';
     const std::size_t end = pos + name.size();
     if (startOk && (end == all.size() || all[end] == ' ')) return true;
@@ -43,16 +44,26 @@ Fn eglProc(const char* name) {
 std::string eglErrorText() {
   const EGLint e = eglGetError();
   switch (e) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    case EGL_SUCCESS:
+      return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
     default: {
       char buf[32];
       std::snprintf(buf, sizeof buf, "EGL error 0x%04x", static_cast<unsigned>(e));
@@ -132,7 +143,8 @@ std::vector<Candidate> candidatesFor(GlPlatform platform) {
   for (EGLDeviceEXT d : hardware) out.push_back({"device", EGL_PLATFORM_DEVICE_EXT, d});
   if (platform == GlPlatform::Device) {
     for (EGLDeviceEXT d : software) out.push_back({"device", EGL_PLATFORM_DEVICE_EXT, d});
-    if (out.empty()) out.push_back({"device", EGL_PLATFORM_DEVICE_EXT, nullptr});  // reported as failed
+    if (out.empty())
+      out.push_back({"device", EGL_PLATFORM_DEVICE_EXT, nullptr});  // reported as failed
     return out;
   }
   out.push_back({"surfaceless", EGL_PLATFORM_SURFACELESS_MESA, nullptr});
@@ -168,9 +180,11 @@ std::optional<EGLConfig> chooseConfig(EGLDisplay display) {
 EGLContext createContext(EGLDisplay display, EGLConfig config, int major, int minor, bool debug) {
   std::vector<EGLint> attribs;
   if (major > 0) {
-    attribs = {EGL_CONTEXT_MAJOR_VERSION_KHR, major, EGL_CONTEXT_MINOR_VERSION_KHR, minor,
+    attribs = {EGL_CONTEXT_MAJOR_VERSION_KHR,       major,
+               EGL_CONTEXT_MINOR_VERSION_KHR,       minor,
                EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR};
-    if (debug) attribs.insert(attribs.end(), {EGL_CONTEXT_FLAGS_KHR, EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR});
+    if (debug)
+      attribs.insert(attribs.end(), {EGL_CONTEXT_FLAGS_KHR, EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR});
   }
   attribs.push_back(EGL_NONE);
   return eglCreateContext(display, config, EGL_NO_CONTEXT, attribs.data());
@@ -210,9 +224,12 @@ std::string glString(GLenum name) {
 
 std::string_view triedList(GlPlatform platform) {
   switch (platform) {
-    case GlPlatform::Auto: return "device, surfaceless, default";
-    case GlPlatform::Device: return "device";
-    case GlPlatform::Surfaceless: return "surfaceless";
+    case GlPlatform::Auto:
+      return "device, surfaceless, default";
+    case GlPlatform::Device:
+      return "device";
+    case GlPlatform::Surfaceless:
+      return "surfaceless";
   }
   return "";
 }
@@ -229,9 +246,12 @@ GlPlatform parseGlPlatform(std::string_view text) {
 
 std::string_view toString(GlPlatform platform) {
   switch (platform) {
-    case GlPlatform::Auto: return "auto";
-    case GlPlatform::Device: return "device";
-    case GlPlatform::Surfaceless: return "surfaceless";
+    case GlPlatform::Auto:
+      return "auto";
+    case GlPlatform::Device:
+      return "device";
+    case GlPlatform::Surfaceless:
+      return "surfaceless";
   }
   return "auto";
 }
@@ -318,9 +338,10 @@ HeadlessGlContext::HeadlessGlContext(GlPlatform platform) : egl_(std::make_uniqu
     throw RunError("no EGL display could be opened (tried " + std::string(triedList(platform)) +
                    "): " + kInstallHint);
   }
-  throw RunError(versionProblem +
-                 ": use a GPU driver with OpenGL 4.5, or Mesa >= 20.3 whose llvmpipe provides it on "
-                 "the surfaceless platform");
+  throw RunError(
+      versionProblem +
+      ": use a GPU driver with OpenGL 4.5, or Mesa >= 20.3 whose llvmpipe provides it on "
+      "the surfaceless platform");
 }
 
 HeadlessGlContext::~HeadlessGlContext() {

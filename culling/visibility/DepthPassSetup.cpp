@@ -40,7 +40,8 @@ DepthPassSetup makeDepthPassSetup(const ViewSpec& view, DepthUse depth) {
   if (!std::isfinite(dirNorm) || dirNorm < 1e-12)
     throw InputError("view direction must be a finite non-zero vector");
   Aabb bounds = view.bounds;
-  if (bounds.isEmpty()) bounds = Aabb(Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0));
+  if (bounds.isEmpty())
+    bounds = Aabb(Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0));
   if (!bounds.min().allFinite() || !bounds.max().allFinite())
     throw InputError("view bounds are not finite (NaN or infinite poses?)");
 
@@ -57,7 +58,8 @@ DepthPassSetup makeDepthPassSetup(const ViewSpec& view, DepthUse depth) {
   padded[2] = std::max(half[2], 1e-9 * largest) * (1.0 + 2.0 * kDepthPad);
 
   // x_px = (u.(p - c) + hu) / (2 hu) * res, likewise y; t = (w.(p - c) + hw) / (2 hw).
-  const Eigen::Vector3d scale(res / (2.0 * padded[0]), res / (2.0 * padded[1]), 1.0 / (2.0 * padded[2]));
+  const Eigen::Vector3d scale(res / (2.0 * padded[0]), res / (2.0 * padded[1]),
+                              1.0 / (2.0 * padded[2]));
   const Eigen::Vector3d offset(res * 0.5, res * 0.5, 0.5);
   DepthPassSetup s;
   s.resolution = view.resolution;
@@ -84,7 +86,8 @@ DepthPassSetup makeDepthPassSetup(const ViewSpec& view, DepthUse depth) {
 
   // Float vertex transforms lose about an ulp of the largest coordinate per step; relative to the
   // depth extent that is what two surfaces meeting at a point may disagree by.
-  const double magnitude = std::max(bounds.min().cwiseAbs().maxCoeff(), bounds.max().cwiseAbs().maxCoeff());
+  const double magnitude =
+      std::max(bounds.min().cwiseAbs().maxCoeff(), bounds.max().cwiseAbs().maxCoeff());
   const double depthRange = std::abs(s.depthFar - s.depthNear);
   s.depthEpsilon = 8.0 * kFloatUlpAtOne +
                    depthRange * 16.0 * kFloatUlpAtOne * (1.0 + magnitude / (2.0 * padded[2]));

@@ -45,7 +45,8 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
   pipeline_.attach(*scene);
   const GlSceneBuffers& buffers = pipeline_.buffers();
   const auto slotOf = [&](ObjectId o) -> const GlMeshSlot& {
-    if (o >= buffers.objectCount()) throw InputError("the recording draws an object beyond its scene");
+    if (o >= buffers.objectCount())
+      throw InputError("the recording draws an object beyond its scene");
     return buffers.slotOf(o);
   };
 
@@ -54,7 +55,8 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
   for (const RecordedOp& op : ops) {
     Command c;
     switch (op.kind) {
-      case K::AttachScene: continue;
+      case K::AttachScene:
+        continue;
       case K::SetOptions:
         c.kind = C::Options, c.payload = p.options.size();
         p.options.push_back(op.options);
@@ -122,8 +124,12 @@ void GlDrawFloor::run(const Program& p, std::vector<std::vector<std::uint8_t>>& 
         pipeline_.setConservative(p.options[c.payload].conservative);
         pipeline_.setRawDepthOffset(p.options[c.payload].rawDepthOffset);
         break;
-      case C::Poses: pipeline_.uploadPoses(p.poses[c.payload]); break;
-      case C::Pass: pipeline_.beginPass(p.passes[c.payload]); break;
+      case C::Poses:
+        pipeline_.uploadPoses(p.poses[c.payload]);
+        break;
+      case C::Pass:
+        pipeline_.beginPass(p.passes[c.payload]);
+        break;
       case C::Query:
       case C::Write: {
         const bool query = c.kind == C::Query;
@@ -147,7 +153,9 @@ void GlDrawFloor::run(const Program& p, std::vector<std::vector<std::uint8_t>>& 
         pipeline_.drawRuns(c.slot, runs);
         break;
       }
-      case C::Fetch: pipeline_.fetch(answers[c.payload]); break;
+      case C::Fetch:
+        pipeline_.fetch(answers[c.payload]);
+        break;
     }
   }
   // A recording that ends between a query and its fetch still pays for the wait.
@@ -169,7 +177,8 @@ FloorTiming GlDrawFloor::replay(std::span<const RecordedOp> ops, int repeats) {
   for (int r = 0; r < std::max(repeats, 1); ++r) {
     const auto start = std::chrono::steady_clock::now();
     run(program, answers);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     total += s;
     best = r == 0 ? s : std::min(best, s);
   }

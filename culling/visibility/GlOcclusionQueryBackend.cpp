@@ -30,7 +30,9 @@ void GlOcclusionQueryBackend::attachScene(const SceneGeometry& scene) {
   lastResolution_ = 0;
 }
 
-void GlOcclusionQueryBackend::setPoses(std::span<const Pose> poses) { pipeline_.uploadPoses(poses); }
+void GlOcclusionQueryBackend::setPoses(std::span<const Pose> poses) {
+  pipeline_.uploadPoses(poses);
+}
 
 void GlOcclusionQueryBackend::beginPass(const ViewSpec& view, DepthUse depth) {
   if (depth == DepthUse::SharedSecond &&
@@ -66,7 +68,8 @@ void GlOcclusionQueryBackend::drawRange(const MeshRange& range, DrawRole role) {
   pipeline_.setObject(range.object);
   pipeline_.setLocalIdentity();
   if (range.triangleCount == 0) return;
-  pipeline_.draw(pipeline_.buffers().slotOf(range.object), range.firstTriangle, range.triangleCount);
+  pipeline_.draw(pipeline_.buffers().slotOf(range.object), range.firstTriangle,
+                 range.triangleCount);
   ++counters_.draws;
   counters_.trianglesDrawn += range.triangleCount;
 }
@@ -109,7 +112,8 @@ void GlOcclusionQueryBackend::writeBox(ObjectId object, const OrientedBox& local
   drawBox(object, localBox, DrawRole::Write);
 }
 
-void GlOcclusionQueryBackend::writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) {
+void GlOcclusionQueryBackend::writeTriangles(ObjectId object,
+                                             std::span<const std::uint32_t> triangles) {
   const GlMeshSlot& slot = checkedSlot(object);
   // Consecutive triangles become one run; all runs go in one multi-draw.
   runs_.clear();

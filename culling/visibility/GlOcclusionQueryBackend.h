@@ -15,7 +15,8 @@ namespace cdb {
 class GlOcclusionQueryBackend final : public VisibilityBackend {
  public:
   // The backend's GL objects live in `context`, which must outlive it.
-  explicit GlOcclusionQueryBackend(HeadlessGlContext& context, const VisibilityOptions& options = {});
+  explicit GlOcclusionQueryBackend(HeadlessGlContext& context,
+                                   const VisibilityOptions& options = {});
 
   [[nodiscard]] std::string_view name() const override { return "gl-occlusion-query"; }
   void setOptions(const VisibilityOptions& options) override;

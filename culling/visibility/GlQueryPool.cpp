@@ -11,7 +11,8 @@ GlQueryPool::~GlQueryPool() {
 void GlQueryPool::grow() {
   const std::size_t add = std::max<std::size_t>(names_.size(), 256);
   names_.resize(names_.size() + add);
-  glCreateQueries(GL_ANY_SAMPLES_PASSED, static_cast<GLsizei>(add), names_.data() + names_.size() - add);
+  glCreateQueries(GL_ANY_SAMPLES_PASSED, static_cast<GLsizei>(add),
+                  names_.data() + names_.size() - add);
 }
 
 void GlQueryPool::fetch(std::vector<std::uint8_t>& fullyVisible) {

@@ -15,7 +15,8 @@ class GlQueryPool {
   GlQueryPool(const GlQueryPool&) = delete;
   GlQueryPool& operator=(const GlQueryPool&) = delete;
 
-  // Starts the next query (GL_ANY_SAMPLES_PASSED: only "any sample" matters) and returns its number.
+  // Starts the next query (GL_ANY_SAMPLES_PASSED: only "any sample" matters) and returns its
+  // number.
   std::uint32_t begin() {
     if (used_ == names_.size()) grow();
     glBeginQuery(GL_ANY_SAMPLES_PASSED, names_[used_]);

@@ -30,7 +30,8 @@ void GlSceneBuffers::attach(const SceneGeometry& scene) {
   all.push_back(&cube);
 
   std::size_t vertexCount = 0, indexCount = 0;
-  for (const Mesh* m : all) vertexCount += m->vertices.size(), indexCount += 3 * m->triangles.size();
+  for (const Mesh* m : all)
+    vertexCount += m->vertices.size(), indexCount += 3 * m->triangles.size();
   // The conservative program numbers six vertices per triangle in a signed int.
   if (vertexCount > 0x7fffffffu || indexCount / 3 > 0x7fffffffu / 6)
     throw RunError("the scene has too many triangles or vertices for 32-bit indices");
@@ -71,7 +72,8 @@ void GlSceneBuffers::attach(const SceneGeometry& scene) {
                        vertexData.data(), 0);
   glCreateBuffers(1, &name);
   indices_ = GlBuffer(name);
-  glNamedBufferStorage(indices_.get(), static_cast<GLsizeiptr>(indexData.size() * sizeof(std::uint32_t)),
+  glNamedBufferStorage(indices_.get(),
+                       static_cast<GLsizeiptr>(indexData.size() * sizeof(std::uint32_t)),
                        indexData.data(), 0);
   glCreateBuffers(1, &name);
   models_ = GlBuffer(name);

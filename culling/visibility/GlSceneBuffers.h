@@ -32,7 +32,9 @@ class GlSceneBuffers {
 
   [[nodiscard]] bool attached() const { return static_cast<bool>(vao_); }
   [[nodiscard]] std::size_t objectCount() const { return objectMesh_.size(); }
-  [[nodiscard]] const GlMeshSlot& slotOf(ObjectId object) const { return meshes_[objectMesh_[object]]; }
+  [[nodiscard]] const GlMeshSlot& slotOf(ObjectId object) const {
+    return meshes_[objectMesh_[object]];
+  }
   // The cube [-1, 1]^3 (12 triangles).
   [[nodiscard]] const GlMeshSlot& cube() const { return meshes_.back(); }
 

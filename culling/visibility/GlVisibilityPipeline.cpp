@@ -53,7 +53,8 @@ void GlVisibilityPipeline::ensureTarget(int resolution) {
   glCreateRenderbuffers(1, &name);
   GlRenderbuffer depth(name);
   glNamedRenderbufferStorage(depth.get(), GL_DEPTH_COMPONENT32F, resolution, resolution);
-  glNamedFramebufferRenderbuffer(framebuffer_.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
+  glNamedFramebufferRenderbuffer(framebuffer_.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                 depth.get());
   const GLenum status = glCheckNamedFramebufferStatus(framebuffer_.get(), GL_DRAW_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     char code[16];
@@ -99,8 +100,8 @@ void GlVisibilityPipeline::applyPassState() {
     glUseProgram(conservativeProgram_.get());
     glUniformMatrix4fv(u::kWorldTo, 1, GL_FALSE, worldToScreen.data());
     // The epsilon is in stored-depth units; the shader works in view depth t.
-    glUniform1f(u::kDepthEpsilon,
-                static_cast<float>(setup_.depthEpsilon / std::abs(setup_.depthFar - setup_.depthNear)));
+    glUniform1f(u::kDepthEpsilon, static_cast<float>(setup_.depthEpsilon /
+                                                     std::abs(setup_.depthFar - setup_.depthNear)));
     glUniform1f(u::kGrowPx, static_cast<float>(0.5 + setup_.coverageMarginPx));
     glUniform1f(u::kResolution, static_cast<float>(setup_.resolution));
   } else {
@@ -139,10 +140,12 @@ void GlVisibilityPipeline::drawRuns(const GlMeshSlot& slot, std::span<const Run>
   if (conservative_) {
     runFirsts_.clear();
     for (const Run& r : runs) {
-      runFirsts_.push_back(static_cast<GLint>(kConservativeVerticesPerTriangle * (slot.firstTriangle + r.first)));
+      runFirsts_.push_back(
+          static_cast<GLint>(kConservativeVerticesPerTriangle * (slot.firstTriangle + r.first)));
       runCounts_.push_back(static_cast<GLsizei>(kConservativeVerticesPerTriangle * r.count));
     }
-    glMultiDrawArrays(GL_TRIANGLES, runFirsts_.data(), runCounts_.data(), static_cast<GLsizei>(runs.size()));
+    glMultiDrawArrays(GL_TRIANGLES, runFirsts_.data(), runCounts_.data(),
+                      static_cast<GLsizei>(runs.size()));
   } else {
     runOffsets_.clear();
     for (const Run& r : runs) {
@@ -159,7 +162,8 @@ std::vector<float> GlVisibilityPipeline::readDepth() const {
   if (depth.empty()) return depth;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.get());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, targetResolution_, targetResolution_, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  glReadPixels(0, 0, targetResolution_, targetResolution_, GL_DEPTH_COMPONENT, GL_FLOAT,
+               depth.data());
   return depth;
 }
 

@@ -6,11 +6,10 @@
 //
 // One pipeline draws at a time on a context: beginPass re-establishes every piece of GL state it
 // relies on, and within a pass nothing else may draw on the context.
+#include <Eigen/Core>
 #include <cstdint>
 #include <span>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "culling/visibility/DepthPassSetup.h"
 #include "culling/visibility/GlQueryPool.h"
@@ -69,7 +68,8 @@ class GlVisibilityPipeline {
       glDrawArrays(GL_TRIANGLES, static_cast<GLint>(kConservativeVerticesPerTriangle * global),
                    static_cast<GLsizei>(kConservativeVerticesPerTriangle * count));
     else
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * count), GL_UNSIGNED_INT, indexOffset(global));
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * count), GL_UNSIGNED_INT,
+                     indexOffset(global));
   }
   // Several runs of triangles of a mesh in one draw call.
   struct Run {
@@ -90,7 +90,8 @@ class GlVisibilityPipeline {
   void applyRole(DrawRole role);
   void applyLocal(const Eigen::Matrix4f& local, bool identity);
   static const void* indexOffset(std::uint32_t globalTriangle) {
-    return reinterpret_cast<const void*>(static_cast<std::uintptr_t>(globalTriangle) * 3u * sizeof(std::uint32_t));
+    return reinterpret_cast<const void*>(static_cast<std::uintptr_t>(globalTriangle) * 3u *
+                                         sizeof(std::uint32_t));
   }
   void ensureTarget(int resolution);
 

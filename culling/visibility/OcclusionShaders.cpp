@@ -160,8 +160,8 @@ void main() {
 }  // namespace
 
 GlProgramName makeRawOcclusionProgram() {
-  return linkProgram("raw occlusion", {{GL_VERTEX_SHADER, kRawVertex},
-                                       {GL_FRAGMENT_SHADER, kEmptyFragment}});
+  return linkProgram("raw occlusion",
+                     {{GL_VERTEX_SHADER, kRawVertex}, {GL_FRAGMENT_SHADER, kEmptyFragment}});
 }
 
 GlProgramName makeConservativeOcclusionProgram() {

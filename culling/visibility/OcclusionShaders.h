@@ -8,11 +8,11 @@ namespace cdb {
 
 // Uniform locations shared by both programs' sources (explicit, so no look-ups are needed).
 namespace occlusion_uniform {
-inline constexpr GLint kObject = 0;        // int: index into the model-matrix buffer
-inline constexpr GLint kLocal = 1;         // mat4: local frame of the drawn piece (a box) or identity
-inline constexpr GLint kWorldTo = 2;       // mat4: world -> clip (raw) or world -> screen (conservative)
-inline constexpr GLint kNdcOffset = 3;     // float, raw: NDC depth offset of the draw
-inline constexpr GLint kSide = 4;          // float, conservative: +1 test (farthest), -1 write (nearest)
+inline constexpr GLint kObject = 0;   // int: index into the model-matrix buffer
+inline constexpr GLint kLocal = 1;    // mat4: local frame of the drawn piece (a box) or identity
+inline constexpr GLint kWorldTo = 2;  // mat4: world -> clip (raw) or world -> screen (conservative)
+inline constexpr GLint kNdcOffset = 3;  // float, raw: NDC depth offset of the draw
+inline constexpr GLint kSide = 4;  // float, conservative: +1 test (farthest), -1 write (nearest)
 inline constexpr GLint kDepthEpsilon = 5;  // float, conservative: depth epsilon in view-depth units
 inline constexpr GLint kGrowPx = 6;        // float, conservative: half pixel plus margin
 inline constexpr GLint kResolution = 7;    // float, conservative: pixels across the buffer

@@ -75,16 +75,36 @@ void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops) {
   std::vector<std::uint8_t> answers;
   for (const RecordedOp& op : ops) {
     switch (op.kind) {
-      case RecordedOp::Kind::SetOptions: target.setOptions(op.options); break;
-      case RecordedOp::Kind::AttachScene: target.attachScene(*op.scene); break;
-      case RecordedOp::Kind::SetPoses: target.setPoses(op.poses); break;
-      case RecordedOp::Kind::BeginPass: target.beginPass(op.view, op.depth); break;
-      case RecordedOp::Kind::QueryRange: target.queryRange(op.range); break;
-      case RecordedOp::Kind::QueryBox: target.queryBox(op.object, op.box); break;
-      case RecordedOp::Kind::WriteRange: target.writeRange(op.range); break;
-      case RecordedOp::Kind::WriteTriangles: target.writeTriangles(op.object, op.triangles); break;
-      case RecordedOp::Kind::WriteBox: target.writeBox(op.object, op.box); break;
-      case RecordedOp::Kind::FetchResults: target.fetchResults(answers); break;
+      case RecordedOp::Kind::SetOptions:
+        target.setOptions(op.options);
+        break;
+      case RecordedOp::Kind::AttachScene:
+        target.attachScene(*op.scene);
+        break;
+      case RecordedOp::Kind::SetPoses:
+        target.setPoses(op.poses);
+        break;
+      case RecordedOp::Kind::BeginPass:
+        target.beginPass(op.view, op.depth);
+        break;
+      case RecordedOp::Kind::QueryRange:
+        target.queryRange(op.range);
+        break;
+      case RecordedOp::Kind::QueryBox:
+        target.queryBox(op.object, op.box);
+        break;
+      case RecordedOp::Kind::WriteRange:
+        target.writeRange(op.range);
+        break;
+      case RecordedOp::Kind::WriteTriangles:
+        target.writeTriangles(op.object, op.triangles);
+        break;
+      case RecordedOp::Kind::WriteBox:
+        target.writeBox(op.object, op.box);
+        break;
+      case RecordedOp::Kind::FetchResults:
+        target.fetchResults(answers);
+        break;
     }
   }
 }

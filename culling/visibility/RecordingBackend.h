@@ -10,20 +10,28 @@ namespace cdb {
 
 struct RecordedOp {
   enum class Kind {
-    SetOptions, AttachScene, SetPoses, BeginPass, QueryRange, QueryBox, WriteRange, WriteTriangles,
-    WriteBox, FetchResults
+    SetOptions,
+    AttachScene,
+    SetPoses,
+    BeginPass,
+    QueryRange,
+    QueryBox,
+    WriteRange,
+    WriteTriangles,
+    WriteBox,
+    FetchResults
   };
   Kind kind = Kind::BeginPass;
-  VisibilityOptions options;                 // SetOptions
-  const SceneGeometry* scene = nullptr;      // AttachScene (not owned)
-  std::vector<Pose> poses;                   // SetPoses
-  ViewSpec view;                             // BeginPass
-  DepthUse depth = DepthUse::Fresh;          // BeginPass
-  MeshRange range;                           // QueryRange, WriteRange
-  ObjectId object = 0;                       // QueryBox, WriteTriangles, WriteBox
-  OrientedBox box;                           // QueryBox, WriteBox
-  std::vector<std::uint32_t> triangles;      // WriteTriangles
-  std::vector<std::uint8_t> answers;         // FetchResults: what the recorded backend answered
+  VisibilityOptions options;             // SetOptions
+  const SceneGeometry* scene = nullptr;  // AttachScene (not owned)
+  std::vector<Pose> poses;               // SetPoses
+  ViewSpec view;                         // BeginPass
+  DepthUse depth = DepthUse::Fresh;      // BeginPass
+  MeshRange range;                       // QueryRange, WriteRange
+  ObjectId object = 0;                   // QueryBox, WriteTriangles, WriteBox
+  OrientedBox box;                       // QueryBox, WriteBox
+  std::vector<std::uint32_t> triangles;  // WriteTriangles
+  std::vector<std::uint8_t> answers;     // FetchResults: what the recorded backend answered
 };
 
 class RecordingBackend final : public VisibilityBackend {

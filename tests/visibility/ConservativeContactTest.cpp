@@ -2,11 +2,11 @@
 // triangles that touch or cross anywhere are never reported fully visible against each other, at
 // any resolution, however small or thin they are in pixels; raw rasterisation misses some of them;
 // and conservative mode still separates pairs with a clear gap.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <iostream>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "culling/visibility/DepthPassSetup.h"
 #include "tests/visibility/GlTestSupport.h"
@@ -24,7 +24,14 @@ struct PairCase {
 };
 
 enum class PairKind {
-  TouchAtPoint, CrossShort, SliverTouch, SliverCross, TouchLarge, CrossLarge, FaceOnTouch, Gap
+  TouchAtPoint,
+  CrossShort,
+  SliverTouch,
+  SliverCross,
+  TouchLarge,
+  CrossLarge,
+  FaceOnTouch,
+  Gap
 };
 
 class CaseGenerator {
@@ -42,16 +49,19 @@ class CaseGenerator {
     const Vec3 viewLocal = c.poseA.rotation.inverse() * c.direction;
     const bool sliver = kind == PairKind::SliverTouch || kind == PairKind::SliverCross;
     // Large triangles (up to 40 pixels) test the depth plane rather than the vertex range.
-    const bool large = kind == PairKind::TouchLarge || kind == PairKind::CrossLarge || kind == PairKind::Gap;
+    const bool large =
+        kind == PairKind::TouchLarge || kind == PairKind::CrossLarge || kind == PairKind::Gap;
     const auto shape = [&] {
-      return sliver ? sliverTriangle(pixel) : randomTriangle(pixel, large ? 2.0 : 0.05, large ? 40.0 : 2.0);
+      return sliver ? sliverTriangle(pixel)
+                    : randomTriangle(pixel, large ? 2.0 : 0.05, large ? 40.0 : 2.0);
     };
     std::array<Vec3, 3> a = shape();
     // P: a vertex, an edge point or an interior point of A.
     const Vec3 p = pointOf(a, static_cast<int>(u(0, 3)));
     std::array<Vec3, 3> b = shape();
     const Vec3 normalA = (a[1] - a[0]).cross(a[2] - a[0]).normalized();
-    if (kind == PairKind::TouchAtPoint || kind == PairKind::SliverTouch || kind == PairKind::TouchLarge) {
+    if (kind == PairKind::TouchAtPoint || kind == PairKind::SliverTouch ||
+        kind == PairKind::TouchLarge) {
       // B has a vertex at P and lies on one side of A's plane: they share exactly that point.
       const double sign = u(0, 1) < 0.5 ? -1.0 : 1.0;
       for (Vec3& v : b) {
@@ -84,7 +94,8 @@ class CaseGenerator {
   PairCase faceOn(double pixel) {
     PairCase c;
     c.direction = unit();
-    const Eigen::Matrix3d basis = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), c.direction).toRotationMatrix();
+    const Eigen::Matrix3d basis =
+        Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), c.direction).toRotationMatrix();
     const Vec3 p(u(-0.4, 0.4), u(-0.4, 0.4), u(-0.4, 0.4));
     const auto flat = [&] {
       std::array<Vec3, 3> t = randomTriangle(pixel, 0.05, 20.0);
@@ -167,7 +178,8 @@ struct Outcome {
 Outcome runCases(GlOcclusionQueryBackend& backend, bool conservative, PairKind kind, int resolution,
                  int count, unsigned seed) {
   const Aabb bounds(Vec3::Constant(-1.0), Vec3::Constant(1.0));
-  const DepthPassSetup setup = makeDepthPassSetup({Vec3::UnitZ(), bounds, resolution}, DepthUse::Fresh);
+  const DepthPassSetup setup =
+      makeDepthPassSetup({Vec3::UnitZ(), bounds, resolution}, DepthUse::Fresh);
   const double pixel = 1.0 / setup.worldToScreen.row(0).head<3>().norm();
   CaseGenerator generator(seed);
   std::vector<PairCase> cases;
@@ -210,9 +222,7 @@ constexpr int kCasesPerKind = 50;  // per kind and resolution: 7 x 4 x 50 cases,
 
 class ConservativeContact : public testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    backend_ = new GlOcclusionQueryBackend(test::sharedGlContext());
-  }
+  static void SetUpTestSuite() { backend_ = new GlOcclusionQueryBackend(test::sharedGlContext()); }
   static void TearDownTestSuite() {
     delete backend_;
     backend_ = nullptr;
@@ -221,19 +231,27 @@ class ConservativeContact : public testing::Test {
 };
 GlOcclusionQueryBackend* ConservativeContact::backend_ = nullptr;
 
-const PairKind kContactKinds[] = {PairKind::TouchAtPoint, PairKind::CrossShort, PairKind::SliverTouch,
-                                  PairKind::SliverCross, PairKind::TouchLarge, PairKind::CrossLarge,
-                                  PairKind::FaceOnTouch};
+const PairKind kContactKinds[] = {
+    PairKind::TouchAtPoint, PairKind::CrossShort, PairKind::SliverTouch, PairKind::SliverCross,
+    PairKind::TouchLarge,   PairKind::CrossLarge, PairKind::FaceOnTouch};
 const char* kindName(PairKind k) {
   switch (k) {
-    case PairKind::TouchAtPoint: return "touch at a point";
-    case PairKind::CrossShort: return "cross along a short segment";
-    case PairKind::SliverTouch: return "sliver touching";
-    case PairKind::SliverCross: return "sliver crossing";
-    case PairKind::TouchLarge: return "large touching at a point";
-    case PairKind::CrossLarge: return "large crossing";
-    case PairKind::FaceOnTouch: return "facing the viewer, touching";
-    case PairKind::Gap: return "gap";
+    case PairKind::TouchAtPoint:
+      return "touch at a point";
+    case PairKind::CrossShort:
+      return "cross along a short segment";
+    case PairKind::SliverTouch:
+      return "sliver touching";
+    case PairKind::SliverCross:
+      return "sliver crossing";
+    case PairKind::TouchLarge:
+      return "large touching at a point";
+    case PairKind::CrossLarge:
+      return "large crossing";
+    case PairKind::FaceOnTouch:
+      return "facing the viewer, touching";
+    case PairKind::Gap:
+      return "gap";
   }
   return "";
 }
@@ -244,8 +262,9 @@ TEST_F(ConservativeContact, NeverReportsTouchingOrCrossingPairsFullyVisible) {
     for (PairKind kind : kContactKinds) {
       const Outcome o = runCases(*backend_, true, kind, resolution, kCasesPerKind,
                                  1000u * resolution + static_cast<unsigned>(kind));
-      EXPECT_EQ(o.fullyVisible, 0) << kindName(kind) << " at " << resolution << ": " << o.fullyVisible
-                                   << " of " << o.pairs << " tests missed the contact";
+      EXPECT_EQ(o.fullyVisible, 0)
+          << kindName(kind) << " at " << resolution << ": " << o.fullyVisible << " of " << o.pairs
+          << " tests missed the contact";
       total += o.pairs;
     }
   }
@@ -261,8 +280,8 @@ TEST_F(ConservativeContact, RawRasterisationMissesSomeAtLowResolution) {
       missed += o.fullyVisible;
       pairs += o.pairs;
     }
-    std::cout << "[ RAW     ] " << resolution << "x" << resolution << ": " << missed << " of " << pairs
-              << " contact tests missed\n";
+    std::cout << "[ RAW     ] " << resolution << "x" << resolution << ": " << missed << " of "
+              << pairs << " contact tests missed\n";
     // The cases are sized in pixels, so raw mode loses about as many at every resolution.
     if (resolution == 16) {
       EXPECT_GT(missed, pairs / 10) << "raw mode should lose sub-pixel contacts";
@@ -272,10 +291,10 @@ TEST_F(ConservativeContact, RawRasterisationMissesSomeAtLowResolution) {
 
 TEST_F(ConservativeContact, StillSeparatesPairsWithAClearGap) {
   for (int resolution : kResolutions) {
-    const Outcome o = runCases(*backend_, true, PairKind::Gap, resolution, 2 * kCasesPerKind,
-                               7000u + resolution);
-    std::cout << "[ GAP     ] " << resolution << "x" << resolution << ": " << o.fullyVisible << " of "
-              << o.pairs << " gap pairs fully visible\n";
+    const Outcome o =
+        runCases(*backend_, true, PairKind::Gap, resolution, 2 * kCasesPerKind, 7000u + resolution);
+    std::cout << "[ GAP     ] " << resolution << "x" << resolution << ": " << o.fullyVisible
+              << " of " << o.pairs << " gap pairs fully visible\n";
     EXPECT_GE(o.fullyVisible, o.pairs * 7 / 10) << "at " << resolution;
   }
 }

@@ -1,11 +1,10 @@
 // The pass geometry without GL: the view basis, the fit to the bounds and the depth conventions.
-#include "culling/visibility/DepthPassSetup.h"
+#include <gtest/gtest.h>
 
 #include <random>
 
-#include <gtest/gtest.h>
-
 #include "core/Errors.h"
+#include "culling/visibility/DepthPassSetup.h"
 
 namespace cdb {
 namespace {
@@ -28,7 +27,8 @@ TEST(DepthPassSetup, BoundsFitInsideTheBufferWithAMargin) {
     const DepthPassSetup s = makeDepthPassSetup({d, bounds, 100}, DepthUse::Fresh);
     double tNear = 1.0, tFar = 0.0;
     for (int c = 0; c < 8; ++c) {
-      const Eigen::Vector4d p = s.worldToScreen * bounds.corner(static_cast<Aabb::CornerType>(c)).homogeneous();
+      const Eigen::Vector4d p =
+          s.worldToScreen * bounds.corner(static_cast<Aabb::CornerType>(c)).homogeneous();
       EXPECT_GE(p.x(), 2.0);
       EXPECT_LE(p.x(), 98.0);
       EXPECT_GE(p.y(), 2.0);
@@ -36,7 +36,8 @@ TEST(DepthPassSetup, BoundsFitInsideTheBufferWithAMargin) {
       EXPECT_GT(p.z(), 0.0);
       EXPECT_LT(p.z(), 1.0);
       tNear = std::min(tNear, p.z()), tFar = std::max(tFar, p.z());
-      const Eigen::Vector4d clip = s.worldToClip * bounds.corner(static_cast<Aabb::CornerType>(c)).homogeneous();
+      const Eigen::Vector4d clip =
+          s.worldToClip * bounds.corner(static_cast<Aabb::CornerType>(c)).homogeneous();
       EXPECT_NEAR(clip.z(), 2.0 * p.z() - 1.0, 1e-12);
       EXPECT_NEAR(clip.x(), p.x() / 50.0 - 1.0, 1e-12);
     }
@@ -50,7 +51,8 @@ TEST(DepthPassSetup, BoundsFitInsideTheBufferWithAMargin) {
 }
 
 TEST(DepthPassSetup, DepthUseSplitsTheRange) {
-  const ViewSpec view{Eigen::Vector3d::UnitZ(), Aabb(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()), 64};
+  const ViewSpec view{Eigen::Vector3d::UnitZ(),
+                      Aabb(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()), 64};
   const DepthPassSetup fresh = makeDepthPassSetup(view, DepthUse::Fresh);
   const DepthPassSetup first = makeDepthPassSetup(view, DepthUse::SharedFirst);
   const DepthPassSetup second = makeDepthPassSetup(view, DepthUse::SharedSecond);
@@ -70,14 +72,19 @@ TEST(DepthPassSetup, DepthUseSplitsTheRange) {
 
 TEST(DepthPassSetup, RejectsBadViews) {
   const Aabb box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
-  EXPECT_THROW((void)makeDepthPassSetup({Eigen::Vector3d::UnitZ(), box, 0}, DepthUse::Fresh), InputError);
-  EXPECT_THROW((void)makeDepthPassSetup({Eigen::Vector3d::Zero(), box, 64}, DepthUse::Fresh), InputError);
+  EXPECT_THROW((void)makeDepthPassSetup({Eigen::Vector3d::UnitZ(), box, 0}, DepthUse::Fresh),
+               InputError);
+  EXPECT_THROW((void)makeDepthPassSetup({Eigen::Vector3d::Zero(), box, 64}, DepthUse::Fresh),
+               InputError);
   const Aabb nan(Eigen::Vector3d::Constant(std::nan("")), Eigen::Vector3d::Ones());
-  EXPECT_THROW((void)makeDepthPassSetup({Eigen::Vector3d::UnitZ(), nan, 64}, DepthUse::Fresh), InputError);
+  EXPECT_THROW((void)makeDepthPassSetup({Eigen::Vector3d::UnitZ(), nan, 64}, DepthUse::Fresh),
+               InputError);
   // Empty or flat bounds still give a usable view.
-  EXPECT_NO_THROW((void)makeDepthPassSetup({Eigen::Vector3d::UnitZ(), Aabb(), 64}, DepthUse::Fresh));
+  EXPECT_NO_THROW(
+      (void)makeDepthPassSetup({Eigen::Vector3d::UnitZ(), Aabb(), 64}, DepthUse::Fresh));
   const Aabb flat(Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 1));
-  const DepthPassSetup s = makeDepthPassSetup({Eigen::Vector3d::UnitZ(), flat, 64}, DepthUse::Fresh);
+  const DepthPassSetup s =
+      makeDepthPassSetup({Eigen::Vector3d::UnitZ(), flat, 64}, DepthUse::Fresh);
   EXPECT_TRUE(s.worldToScreen.allFinite());
 }
 

@@ -1,10 +1,9 @@
 #pragma once
 // Shared pieces of the GL visibility tests: one context for the whole executable (creating one
 // costs tens of milliseconds on llvmpipe) and small scenes built from explicit triangles.
+#include <Eigen/Geometry>
 #include <initializer_list>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 #include "render/HeadlessGlContext.h"
@@ -18,7 +17,8 @@ inline HeadlessGlContext& sharedGlContext() {
   return context;
 }
 
-inline Mesh triangleMesh(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c) {
+inline Mesh triangleMesh(const Eigen::Vector3f& a, const Eigen::Vector3f& b,
+                         const Eigen::Vector3f& c) {
   Mesh m;
   m.name = "triangle";
   m.vertices = {a, b, c};
@@ -30,7 +30,8 @@ inline Mesh triangleMesh(const Eigen::Vector3f& a, const Eigen::Vector3f& b, con
 inline Mesh squareMesh(float cx, float cy, float z0, float h) {
   Mesh m;
   m.name = "square";
-  m.vertices = {{cx - h, cy - h, z0}, {cx + h, cy - h, z0}, {cx + h, cy + h, z0}, {cx - h, cy + h, z0}};
+  m.vertices = {
+      {cx - h, cy - h, z0}, {cx + h, cy - h, z0}, {cx + h, cy + h, z0}, {cx - h, cy + h, z0}};
   m.triangles = {{0, 1, 2}, {0, 2, 3}};
   return m;
 }
@@ -38,7 +39,8 @@ inline Mesh squareMesh(float cx, float cy, float z0, float h) {
 // One object per mesh, in order.
 inline SceneGeometry sceneOf(std::vector<Mesh> meshes) {
   SceneGeometry scene;
-  for (std::size_t i = 0; i < meshes.size(); ++i) scene.objects.push_back({static_cast<std::uint32_t>(i), false, ""});
+  for (std::size_t i = 0; i < meshes.size(); ++i)
+    scene.objects.push_back({static_cast<std::uint32_t>(i), false, ""});
   scene.meshes = std::move(meshes);
   return scene;
 }

@@ -1,13 +1,12 @@
-#include "render/HeadlessGlContext.h"
+#include <gtest/gtest.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 
-#include <gtest/gtest.h>
-
 #include "core/Errors.h"
 #include "render/Gl.h"
+#include "render/HeadlessGlContext.h"
 #include "tests/visibility/GlTestSupport.h"
 
 namespace cdb {
@@ -88,7 +87,8 @@ void expectOpenFailure(const char* variable, const char* value, GlPlatform platf
 
 TEST(HeadlessGlContextDeathTest, NoDisplayIsAOneLineRunErrorWithAHint) {
   // glvnd then finds no EGL vendor at all.
-  expectOpenFailure("__EGL_VENDOR_LIBRARY_FILENAMES", "/nonexistent/egl_vendor.json", GlPlatform::Auto,
+  expectOpenFailure("__EGL_VENDOR_LIBRARY_FILENAMES", "/nonexistent/egl_vendor.json",
+                    GlPlatform::Auto,
                     "no EGL display could be opened (tried device, surfaceless, default): install");
 }
 

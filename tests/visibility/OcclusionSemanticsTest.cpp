@@ -35,8 +35,9 @@ class OcclusionSemantics : public testing::TestWithParam<bool> {
   }
 
   // Writes `written` then tests each of `tested` in one Fresh pass; returns the answers.
-  std::vector<std::uint8_t> afterWriting(ObjectId written, std::vector<ObjectId> tested,
-                                         const Eigen::Vector3d& direction = Eigen::Vector3d::UnitZ()) {
+  std::vector<std::uint8_t> afterWriting(
+      ObjectId written, std::vector<ObjectId> tested,
+      const Eigen::Vector3d& direction = Eigen::Vector3d::UnitZ()) {
     backend_->beginPass(view(direction), DepthUse::Fresh);
     backend_->writeRange(wholeOf(scene_, written));
     for (ObjectId o : tested) backend_->queryRange(wholeOf(scene_, o));
@@ -105,7 +106,8 @@ TEST_P(OcclusionSemantics, SharedPassesShareOneClear) {
 
 TEST_P(OcclusionSemantics, SharedSecondPassAloneIsRejected) {
   backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
-  EXPECT_THROW(backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::SharedSecond), RunError);
+  EXPECT_THROW(backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::SharedSecond),
+               RunError);
 }
 
 TEST_P(OcclusionSemantics, BoxesQueryAndWrite) {
@@ -158,7 +160,8 @@ TEST_P(OcclusionSemantics, MisuseIsReported) {
   EXPECT_THROW(backend_->queryRange({99, 0, 1}), RunError);
   EXPECT_THROW(backend_->queryRange({0, 1, 5}), RunError);
   EXPECT_THROW(backend_->beginPass(view(Eigen::Vector3d::UnitZ(), 0), DepthUse::Fresh), InputError);
-  EXPECT_THROW(backend_->beginPass(view(Eigen::Vector3d::UnitZ(), 1000000), DepthUse::Fresh), InputError);
+  EXPECT_THROW(backend_->beginPass(view(Eigen::Vector3d::UnitZ(), 1000000), DepthUse::Fresh),
+               InputError);
   EXPECT_THROW(backend_->setPoses(test::identityPoses(2)), RunError);
 }
 

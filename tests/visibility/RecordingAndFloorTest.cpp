@@ -1,7 +1,7 @@
 // A recorded run replays to the same answers through the interface and on the draw floor.
-#include <algorithm>
-
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "core/Errors.h"
 #include "culling/visibility/GlDrawFloor.h"
