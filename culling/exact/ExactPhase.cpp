@@ -79,7 +79,8 @@ ExactPhase::ExactPhase(ExactPhase&&) noexcept = default;
 namespace {
 
 // Local box of a member's triangles (checking the subset's indices on the way).
-Aabb localBoxOf(const SetMember& member, const Aabb& meshBounds, const std::vector<Aabb>& triBoxes) {
+Aabb localBoxOf(const SetMember& member, const Aabb& meshBounds,
+                const std::vector<Aabb>& triBoxes) {
   if (member.allTriangles()) return meshBounds;
   Aabb box;
   for (std::uint32_t t : member.triangles) {

@@ -20,7 +20,8 @@ class ExactPhase {
   ExactPhase(ExactPhase&&) noexcept;
   // `poses` holds one pose per scene object. An object pair found in several sets is reported
   // once; once found colliding, later sets skip it.
-  [[nodiscard]] CollisionReport run(std::span<const Pose> poses, const PotentiallyCollidingSets& sets);
+  [[nodiscard]] CollisionReport run(std::span<const Pose> poses,
+                                    const PotentiallyCollidingSets& sets);
 
  private:
   struct Workspace;  // per-mesh caches and buffers reused from frame to frame

@@ -66,8 +66,9 @@ PairCounts traverse(const ReferenceTree& ta, const WorldTree& wa, const Mesh& ma
         for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j) {
           const Triangle& y = mb.triangles[tb.order[j]];
           ++counts.tests;
-          counts.hits += trianglesIntersect(wa.vertices[x[0]], wa.vertices[x[1]], wa.vertices[x[2]],
-                                            wb.vertices[y[0]], wb.vertices[y[1]], wb.vertices[y[2]]);
+          counts.hits +=
+              trianglesIntersect(wa.vertices[x[0]], wa.vertices[x[1]], wa.vertices[x[2]],
+                                 wb.vertices[y[0]], wb.vertices[y[1]], wb.vertices[y[2]]);
         }
       }
     } else if (nb.isLeaf() ||
@@ -116,8 +117,8 @@ CollisionReport GroundTruth::compute(std::span<const Pose> poses) const {
       const WorldTree& wa = worldTree(a);
       const WorldTree& wb = worldTree(b);
       ++report.pairsTested;
-      const PairCounts counts = traverse(ta, wa, scene.meshOf(ObjectId(a)), tb, wb,
-                                         scene.meshOf(ObjectId(b)), stack);
+      const PairCounts counts =
+          traverse(ta, wa, scene.meshOf(ObjectId(a)), tb, wb, scene.meshOf(ObjectId(b)), stack);
       report.triangleTests += counts.tests;
       report.collidingTrianglePairs += counts.hits;
       if (counts.hits > 0) report.collidingPairs.push_back({ObjectId(a), ObjectId(b)});

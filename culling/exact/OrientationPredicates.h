@@ -3,10 +3,9 @@
 // static relative error bound ("Adaptive Precision Floating-Point Arithmetic and Fast Robust
 // Geometric Predicates", 1997, errboundA), and an exact evaluation in GMP rationals when the bound
 // cannot decide. Every double is a rational, so the signs are those of the real determinants.
+#include <Eigen/Core>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Core>
 
 namespace cdb::predicates {
 

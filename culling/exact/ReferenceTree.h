@@ -4,10 +4,9 @@
 // vertices each frame (van den Bergen, "Efficient Collision Detection of Complex Deformable Models
 // using AABB Trees", JGT 1997). Refitting keeps every box the exact hull of the coordinates the
 // triangle test sees, so no tolerance is needed.
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "core/Aabb.h"
 #include "core/Pose.h"

@@ -56,10 +56,8 @@ void fillEntries(std::span<const Aabb> boxes, int axis, std::vector<Entry>& entr
   for (std::uint32_t i = 0; i < boxes.size(); ++i) {
     const Aabb& b = boxes[i];
     if (!isSweepable(b)) continue;
-    entries.push_back({{b.min()[axis], b.min()[u], b.min()[v]},
-                       {b.max()[axis], b.max()[u], b.max()[v]},
-                       i,
-                       0});
+    entries.push_back(
+        {{b.min()[axis], b.min()[u], b.min()[v]}, {b.max()[axis], b.max()[u], b.max()[v]}, i, 0});
   }
 }
 
@@ -90,7 +88,8 @@ struct Grid {
   // Monotone in x, so a box's cells along an axis are those of its two bounds and everything
   // between; clamping keeps coordinates beyond the region in the border cells.
   [[nodiscard]] int cellOf(double x, int k) const {
-    const double t = std::min(std::max((x - origin[k]) * inverseSize[k], 0.0), double(cells[k] - 1));
+    const double t =
+        std::min(std::max((x - origin[k]) * inverseSize[k], 0.0), double(cells[k] - 1));
     return int(t);
   }
   [[nodiscard]] std::uint32_t id(int c0, int c1, int c2) const {
@@ -134,8 +133,10 @@ void bin(const std::vector<Entry>& entries, const Grid& grid, const double (&lo)
     for (int k = 0; k < 3; ++k) inside &= e.lo[k] <= hi[k] && lo[k] <= e.hi[k];
     if (!inside) continue;
     int first[3], last[3];
-    for (int k = 0; k < 3; ++k) first[k] = grid.cellOf(e.lo[k], k), last[k] = grid.cellOf(e.hi[k], k);
-    const int covered = (last[0] - first[0] + 1) * (last[1] - first[1] + 1) * (last[2] - first[2] + 1);
+    for (int k = 0; k < 3; ++k)
+      first[k] = grid.cellOf(e.lo[k], k), last[k] = grid.cellOf(e.hi[k], k);
+    const int covered =
+        (last[0] - first[0] + 1) * (last[1] - first[1] + 1) * (last[2] - first[2] + 1);
     if (covered > kMaxCellsPerBox) {
       large.push_back(e);
       continue;

@@ -1,9 +1,8 @@
 #include "culling/exact/TriangleTriangle.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Geometry>
 
 #include "culling/exact/OrientationPredicates.h"
 
@@ -16,7 +15,7 @@ using Vec3 = Eigen::Vector3d;
 using predicates::orient2d;
 using predicates::orient3d;
 
-// ---- Plane side tests sharing one normal --------------------------------------------------------
+// ---- Plane side tests sharing one normal ----
 
 // A triangle's plane with its normal rounded once, so the three side tests of the other
 // triangle's vertices cost a dot product each. The error bound is orient3d's: the same sum of
@@ -32,9 +31,9 @@ TrianglePlane planeOf(const Vec3& p, const Vec3& q, const Vec3& r) {
   const double yz = u.y() * v.z(), zy = u.z() * v.y();
   const double zx = u.z() * v.x(), xz = u.x() * v.z();
   const double xy = u.x() * v.y(), yx = u.y() * v.x();
-  return {p, q, r, Vec3(yz - zy, zx - xz, xy - yx),
-          Vec3(std::abs(yz) + std::abs(zy), std::abs(zx) + std::abs(xz),
-               std::abs(xy) + std::abs(yx))};
+  return {
+      p, q, r, Vec3(yz - zy, zx - xz, xy - yx),
+      Vec3(std::abs(yz) + std::abs(zy), std::abs(zx) + std::abs(xz), std::abs(xy) + std::abs(yx))};
 }
 
 // Sign of orient3d(p, q, x, r): the side of the plane (p, q, r) that x lies on.
@@ -47,7 +46,7 @@ int sideOf(const TrianglePlane& t, const Vec3& x) {
   return s != 2 ? s : predicates::orient3dExact(t.p, t.q, x, t.r);
 }
 
-// ---- Two dimensions: coplanar and degenerate configurations -------------------------------------
+// ---- Two dimensions: coplanar and degenerate configurations ----
 
 // Drops coordinate `axis`; the map is injective on any plane whose normal has a nonzero `axis`
 // component, so incidences there are preserved exactly.
@@ -113,7 +112,7 @@ bool coplanarTriangles(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec
   return pointInTriangle2d(a[0], b[0], b[1], b[2]) || pointInTriangle2d(b[0], a[0], a[1], a[2]);
 }
 
-// ---- Degenerate triangles as segments ------------------------------------------------------------
+// ---- Degenerate triangles as segments ----
 
 struct Segment {
   Vec3 s, t;
@@ -172,7 +171,7 @@ bool coplanarOrDegenerate(const Vec3& p1, const Vec3& q1, const Vec3& r1, const 
   return segmentTriangle(coveredSegment(p2, q2, r2), p1, q1, r1);
 }
 
-// ---- Guigue-Devillers, general position ----------------------------------------------------------
+// ---- Guigue-Devillers, general position ----
 
 // p1 is alone on its side of plane 2 and p2 alone on its side of plane 1, both triangles wound so
 // that the intersection intervals on the common line can be compared with two orientations.

@@ -2,9 +2,8 @@
 // The exact triangle-triangle test of the exact phase and of the ground truth: Guigue and
 // Devillers, "Fast and Robust Triangle-Triangle Overlap Test Using Orientation Predicates"
 // (Journal of Graphics Tools 8(1), 2003), with every orientation sign computed exactly.
-#include <array>
-
 #include <Eigen/Core>
+#include <array>
 
 namespace cdb {
 

@@ -3,17 +3,19 @@
 // every direction along which two triangles' closest features can be separated (face normals,
 // edge x edge, vertex - vertex, and the perpendicular from a vertex to an edge's line). Exact for
 // any input, degenerate triangles included, because all arithmetic is in GMP rationals.
-#include <array>
-#include <vector>
+#include <gmpxx.h>
 
 #include <Eigen/Core>
-#include <gmpxx.h>
+#include <array>
+#include <vector>
 
 namespace cdb::testing {
 
 using Q3 = std::array<mpq_class, 3>;
 
-inline Q3 toRational(const Eigen::Vector3d& v) { return {mpq_class(v.x()), mpq_class(v.y()), mpq_class(v.z())}; }
+inline Q3 toRational(const Eigen::Vector3d& v) {
+  return {mpq_class(v.x()), mpq_class(v.y()), mpq_class(v.z())};
+}
 inline Q3 minus(const Q3& a, const Q3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 inline Q3 cross(const Q3& a, const Q3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};

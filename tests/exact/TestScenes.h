@@ -61,7 +61,8 @@ inline std::vector<Eigen::Vector3d> worldVertices(const Mesh& mesh, const Pose& 
 inline Mesh unitCube() {
   Mesh m;
   m.name = "cube";
-  for (int i = 0; i < 8; ++i) m.vertices.emplace_back(float(i & 1), float((i >> 1) & 1), float(i >> 2));
+  for (int i = 0; i < 8; ++i)
+    m.vertices.emplace_back(float(i & 1), float((i >> 1) & 1), float(i >> 2));
   m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
   return m;

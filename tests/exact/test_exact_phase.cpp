@@ -1,9 +1,9 @@
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <numeric>
 #include <random>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "TestScenes.h"
 #include "core/Aabb.h"
@@ -28,9 +28,12 @@ std::vector<Aabb> worldBoxes(const SceneGeometry& scene, const std::vector<Pose>
 
 // Connected components of the (slightly widened) world-box overlap graph: a valid partition, as
 // no two objects of different components can touch.
-PotentiallyCollidingSets overlapComponents(const SceneGeometry& scene, const std::vector<Pose>& poses) {
+PotentiallyCollidingSets overlapComponents(const SceneGeometry& scene,
+                                           const std::vector<Pose>& poses) {
   auto boxes = worldBoxes(scene, poses);
-  for (auto& b : boxes) b.extend(b.min() - Eigen::Vector3d::Constant(1e-6)).extend(b.max() + Eigen::Vector3d::Constant(1e-6));
+  for (auto& b : boxes)
+    b.extend(b.min() - Eigen::Vector3d::Constant(1e-6))
+        .extend(b.max() + Eigen::Vector3d::Constant(1e-6));
   std::vector<ObjectId> parent(scene.objectCount());
   std::iota(parent.begin(), parent.end(), 0u);
   const auto root = [&](ObjectId x) {
@@ -134,7 +137,8 @@ TEST(ExactPhase, SmallSubsetFindsItsCollision) {
   poses[1].translation = {1, 0.25, 0.25};
   ExactPhase exact(scene);
   PotentiallyCollidingSets sets(1);
-  sets[0].members = {{0, {10, 11}}, {1, {8}}};  // cube 0's +x face, one triangle of cube 1's -x face
+  sets[0].members = {{0, {10, 11}},
+                     {1, {8}}};  // cube 0's +x face, one triangle of cube 1's -x face
   const CollisionReport got = exact.run(poses, sets);
   EXPECT_EQ(got.collidingPairs, (std::vector<ObjectPair>{{0, 1}}));
   EXPECT_GT(got.collidingTrianglePairs, 0u);

@@ -1,10 +1,10 @@
 // Per-frame processor times of the exact phase (one set holding every object) and of the ground
 // truth on the thesis' torus scenes, recorded as test properties; both must also agree there.
 // Processor time rather than wall time, as tests often share the machine.
+#include <gtest/gtest.h>
+
 #include <ctime>
 #include <iostream>
-
-#include <gtest/gtest.h>
 
 #include "TestScenes.h"
 #include "culling/exact/ExactPhase.h"

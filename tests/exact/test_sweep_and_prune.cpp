@@ -1,9 +1,9 @@
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <limits>
 #include <random>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "culling/exact/SweepAndPrune.h"
 
@@ -112,9 +112,9 @@ INSTANTIATE_TEST_SUITE_P(Seeds, SweepAndPruneRandom, ::testing::Values(1u, 2u, 3
 TEST(SweepAndPrune, TouchingBoxesOverlap) {
   const std::vector<Aabb> boxes = {
       Aabb(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1)),
-      Aabb(Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(2, 1, 1)),   // shares a face with 0
-      Aabb(Eigen::Vector3d(2, 1, 1), Eigen::Vector3d(3, 2, 2)),   // shares a corner with 1
-      Aabb(Eigen::Vector3d(3.5, 0, 0), Eigen::Vector3d(4, 1, 1)), // apart
+      Aabb(Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(2, 1, 1)),    // shares a face with 0
+      Aabb(Eigen::Vector3d(2, 1, 1), Eigen::Vector3d(3, 2, 2)),    // shares a corner with 1
+      Aabb(Eigen::Vector3d(3.5, 0, 0), Eigen::Vector3d(4, 1, 1)),  // apart
   };
   EXPECT_EQ(sweepAndPrune(boxes), (std::vector<IndexPair>{{0, 1}, {1, 2}}));
 }

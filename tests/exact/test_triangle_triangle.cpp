@@ -1,10 +1,10 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <random>
-
-#include <Eigen/Geometry>
-#include <gtest/gtest.h>
 
 #include "ExactReference.h"
 #include "culling/exact/OrientationPredicates.h"
@@ -34,8 +34,10 @@ void expectConsistent(const Tri& a, const Tri& b, bool expected) {
     for (int j = 0; j < 3; ++j, rb = rotated(rb)) {
       EXPECT_EQ(trianglesIntersect(ra, rb), expected) << "rotations " << i << ", " << j;
       EXPECT_EQ(trianglesIntersect(rb, ra), expected) << "swapped, rotations " << i << ", " << j;
-      EXPECT_EQ(trianglesIntersect(reversed(ra), rb), expected) << "reversed, rotations " << i << ", " << j;
-      EXPECT_EQ(trianglesIntersect(ra, reversed(rb)), expected) << "reversed, rotations " << i << ", " << j;
+      EXPECT_EQ(trianglesIntersect(reversed(ra), rb), expected)
+          << "reversed, rotations " << i << ", " << j;
+      EXPECT_EQ(trianglesIntersect(ra, reversed(rb)), expected)
+          << "reversed, rotations " << i << ", " << j;
     }
   }
 }
@@ -73,7 +75,8 @@ TEST(TriangleTriangle, VertexOnTheOthersInterior) {
 
 TEST(TriangleTriangle, EdgeOnTheOthersEdge) {
   expectConsistent(kBase, {V(0.5, 0, 0), V(2, 0, 0), V(1, 0, 1)}, true);  // collinear edges overlap
-  expectConsistent(kBase, {V(0.5, -1, 0), V(0.5, 1, 0), V(0.5, 0, 1)}, true);  // edge through the face
+  // An edge through the face.
+  expectConsistent(kBase, {V(0.5, -1, 0), V(0.5, 1, 0), V(0.5, 0, 1)}, true);
 }
 
 TEST(TriangleTriangle, CoplanarOverlappingAndDisjoint) {
@@ -83,8 +86,8 @@ TEST(TriangleTriangle, CoplanarOverlappingAndDisjoint) {
   expectConsistent(kBase, {V(0.6, 0.6, 0), V(2, 0.6, 0), V(0.6, 2, 0)}, false);
   expectConsistent(kBase, {V(-1, 0.5, 0), V(-0.1, 0.5, 0), V(-0.5, 2, 0)}, false);
   // A star of David: edges cross, no vertex inside the other.
-  expectConsistent({V(0, 0, 0), V(2, 0, 0), V(1, 1.8, 0)}, {V(0, 1.2, 0), V(2, 1.2, 0), V(1, -0.6, 0)},
-                   true);
+  expectConsistent({V(0, 0, 0), V(2, 0, 0), V(1, 1.8, 0)},
+                   {V(0, 1.2, 0), V(2, 1.2, 0), V(1, -0.6, 0)}, true);
 }
 
 TEST(TriangleTriangle, CoplanarInATiltedPlane) {
@@ -125,12 +128,13 @@ TEST(TriangleTriangle, GapBelowWhatRoundedArithmeticResolves) {
 
 TEST(TriangleTriangle, DegenerateTrianglesAreTheirSegmentsOrPoints) {
   const V p(0.25, 0.25, 0);
-  expectConsistent(kBase, {p, p, p}, true);                                      // point on the face
+  expectConsistent(kBase, {p, p, p}, true);  // point on the face
   expectConsistent(kBase, {V(0.25, 0.25, 1e-9), V(0.25, 0.25, 1e-9), V(0.25, 0.25, 1e-9)}, false);
-  expectConsistent(kBase, {V(1, 0, 0), V(1, 0, 0), V(1, 0, 0)}, true);           // point on a vertex
-  expectConsistent(kBase, {V(0.2, 0.2, -1), V(0.2, 0.2, 1), V(0.2, 0.2, 0.5)}, true);  // needle through
+  expectConsistent(kBase, {V(1, 0, 0), V(1, 0, 0), V(1, 0, 0)}, true);  // point on a vertex
+  expectConsistent(kBase, {V(0.2, 0.2, -1), V(0.2, 0.2, 1), V(0.2, 0.2, 0.5)},
+                   true);  // needle through
   expectConsistent(kBase, {V(0.8, 0.8, -1), V(0.8, 0.8, 1), V(0.8, 0.8, 0.5)}, false);
-  expectConsistent(kBase, {V(-1, 0.5, 0), V(2, 0.5, 0), V(0, 0.5, 0)}, true);    // segment in plane
+  expectConsistent(kBase, {V(-1, 0.5, 0), V(2, 0.5, 0), V(0, 0.5, 0)}, true);  // segment in plane
   expectConsistent(kBase, {V(-1, 2, 0), V(2, 2, 0), V(0, 2, 0)}, false);
   // Both degenerate: crossing segments, skew segments, collinear overlapping, points.
   const Tri s1 = {V(0, 0, 0), V(2, 2, 0), V(1, 1, 0)};
@@ -171,7 +175,8 @@ TEST_P(TriangleTriangleRandom, AgreesWithRationalSeparatingAxes) {
     const Tri b = {point(), point(), point()};
     const bool expected = testing::referenceTrianglesIntersect(a, b);
     intersecting += expected;
-    degenerate += (a[1] - a[0]).cross(a[2] - a[0]).isZero(0) || (b[1] - b[0]).cross(b[2] - b[0]).isZero(0);
+    degenerate +=
+        (a[1] - a[0]).cross(a[2] - a[0]).isZero(0) || (b[1] - b[0]).cross(b[2] - b[0]).isZero(0);
     ASSERT_EQ(trianglesIntersect(a, b), expected) << "trial " << trial;
     ASSERT_EQ(trianglesIntersect(rotated(b), reversed(a)), expected) << "trial " << trial;
   }
@@ -196,7 +201,8 @@ TEST_P(TriangleTriangleRandom, AgreesNearAPlaneWhereRoundingDecides) {
     const V n = (a[1] - a[0]).cross(a[2] - a[0]);
     const double s = w(rng), t = w(rng);
     const V apex = a[0] + s * (a[1] - a[0]) + t * (a[2] - a[0]);
-    const Tri b = {apex, apex + n.normalized() + V(0.1, 0, 0), apex + n.normalized() + V(0, 0.1, 0)};
+    const Tri b = {apex, apex + n.normalized() + V(0.1, 0, 0),
+                   apex + n.normalized() + V(0, 0.1, 0)};
     const bool expected = testing::referenceTrianglesIntersect(a, b);
     intersecting += expected;
     // (apex - a0) . ((a1 - a0) x (a2 - a0)) rounded, against its exact sign.
