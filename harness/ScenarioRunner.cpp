@@ -93,8 +93,7 @@ RunSummary runScenario(const RunOptions& options) {
   checkWritableDirectory(options.outDir);
 
   HeadlessGlContext gl(parseGlPlatform(options.glPlatform));
-  GlOcclusionQueryBackend backend;
-  backend.setOptions({config.culling.conservative, config.culling.rawDepthOffset});
+  GlOcclusionQueryBackend backend(gl, {config.culling.conservative, config.culling.rawDepthOffset});
 
   std::vector<int> counts = config.sweep.objectCounts;
   if (counts.empty()) counts.push_back(-1);  // the config's own counts

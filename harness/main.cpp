@@ -11,7 +11,7 @@
 #include "harness/RunOptions.h"
 #include "harness/ScenarioRunner.h"
 #include "render/HeadlessGlContext.h"
-#include "scenes/ConfigLoader.h"
+#include "scenes/IntList.h"
 
 namespace {
 

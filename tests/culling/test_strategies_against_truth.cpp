@@ -35,7 +35,7 @@ class GlFixture {
     return f;
   }
   HeadlessGlContext context{GlPlatform::Auto};
-  GlOcclusionQueryBackend backend;
+  GlOcclusionQueryBackend backend{context};
 };
 
 std::optional<testing::RandomScene> makeScene(SceneKind kind) {
@@ -46,7 +46,9 @@ std::optional<testing::RandomScene> makeScene(SceneKind kind) {
       const auto path = testing::findDragon();
       if (!path) return std::nullopt;
       testing::RandomScene s;
-      s.scene.meshes.push_back(loadMesh(*path, 1.0).mesh);
+      Mesh dragon = loadMesh(*path).mesh;
+      normaliseMesh(dragon, 1.0);
+      s.scene.meshes.push_back(std::move(dragon));
       for (int i = 0; i < 6; ++i) s.scene.objects.push_back({0, false, "dragon"});
       std::mt19937_64 rng(13);
       for (int f = 0; f < 2; ++f) {
@@ -104,9 +106,9 @@ std::vector<Param> allParams() {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllStrategies, StrategyAgainstTruth, ::testing::ValuesIn(allParams()),
-                         [](const auto& info) {
-                           return std::get<0>(info.param) + "_" + sceneName(std::get<1>(info.param)) +
-                                  "_" + std::to_string(std::get<2>(info.param));
+                         [](const auto& param) {
+                           return std::get<0>(param.param) + "_" + sceneName(std::get<1>(param.param)) +
+                                  "_" + std::to_string(std::get<2>(param.param));
                          });
 
 }  // namespace
