@@ -4,11 +4,13 @@
 // scene and a visibility backend, then called once per frame.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 
 #include "culling/PotentiallyCollidingSets.h"
+#include "culling/exact/ObjectPair.h"
 #include "culling/visibility/VisibilityBackend.h"
 #include "core/Pose.h"
 #include "scenes/ScenarioConfig.h"
@@ -26,6 +28,9 @@ struct CullingCounters {
 struct CullingResult {
   PotentiallyCollidingSets sets;
   CullingCounters counters;
+  // Set by strategies that do the whole collision detection themselves (the CPU peers): the
+  // harness then runs no exact phase and takes these pairs (sorted, unique) as the answer.
+  std::optional<CollisionReport> decided;
 };
 
 struct FrameInput {

@@ -149,7 +149,9 @@ RunSummary runScenario(const RunOptions& options) {
             const auto t0 = Clock::now();
             CullingResult culled = strategy->cull({poses, static_cast<int>(f)});
             const auto t1 = Clock::now();
-            const CollisionReport report = exact.run(poses, culled.sets);
+            const bool decidedByStrategy = culled.decided.has_value();
+            const CollisionReport report =
+                decidedByStrategy ? std::move(*culled.decided) : exact.run(poses, culled.sets);
             const auto t2 = Clock::now();
 
             FrameRecord r;
@@ -172,8 +174,9 @@ RunSummary runScenario(const RunOptions& options) {
             r.draws = culled.counters.visibility.draws;
             r.trianglesDrawn = culled.counters.visibility.trianglesDrawn;
             if (truth) {
-              const auto cmp = compareWithTruth(truthPairs[f], report.collidingPairs, culled.sets,
-                                                scene.objectCount());
+              auto cmp = compareWithTruth(truthPairs[f], report.collidingPairs, culled.sets,
+                                          scene.objectCount());
+              if (decidedByStrategy) cmp.cullingMisses = cmp.falseNegatives;  // no sets to split
               r.truthPairs = truthPairs[f].size();
               r.falseNegatives = cmp.falseNegatives;
               r.falsePositives = cmp.falsePositives;
