@@ -1,0 +1,29 @@
+"""False negatives and false positives per environment and strategy, from frames.csv (must be 0)."""
+
+from dataclasses import dataclass
+
+
+@dataclass
+class CorrectnessRow:
+    environment: str
+    strategy: str
+    frames: int
+    false_negatives: int
+    false_positives: int     # None when only tables.csv was available
+    checked: bool            # False when the run skipped the ground truth (--no-truth)
+
+
+def correctness_rows(run):
+    checked = run.meta.get("config", {}).get("ground_truth", True) is not False
+    rows = []
+    for strategy in run.strategies:
+        frames = [r for r in run.frames if r["strategy"] == strategy]
+        if frames:
+            fp = sum(r["false_positives"] for r in frames) if "false_positives" in frames[0] else None
+            rows.append(CorrectnessRow(run.name, strategy, len(frames),
+                                       sum(r["false_negatives"] for r in frames), fp, checked))
+        else:
+            cells = [c for c in run.cells if c.strategy == strategy]
+            rows.append(CorrectnessRow(run.name, strategy, sum(c.frames for c in cells),
+                                       sum(c.false_negatives for c in cells), None, checked))
+    return rows

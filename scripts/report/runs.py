@@ -1,0 +1,191 @@
+"""Reading run outputs: one folder per environment with frames.csv, tables.csv, meta.json (README "Outputs")."""
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .tabular import InputError, read_typed_csv
+
+FRAME_REQUIRED = ("environment", "strategy", "resolution", "objects", "repeat", "frame", "cd_ms",
+                  "sets", "false_negatives")
+FRAME_INTS = ("resolution", "objects", "repeat", "frame", "pcs_size", "sets", "pcs_triangles",
+              "pairs_tested", "triangle_tests", "colliding_pairs", "truth_pairs", "false_negatives",
+              "false_positives", "culling_misses", "queries", "draws", "triangles_drawn")
+FRAME_TIMES = ("cd_ms", "cull_ms", "exact_ms")
+
+STATISTICS = ("average", "maximum")
+TABLE_REQUIRED = ("environment", "statistic", "strategy", "resolution", "objects", "cd_time_ms")
+
+# The thesis' three environments are always listed, so that a missing one is reported, not skipped.
+THESIS_ENVIRONMENTS = ("env1", "env2", "env3")
+
+# A stable row order: the thesis' strategies in the order of its tables' narrative, then CPU peers.
+KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "sorted", "cis", "ours", "fcl", "bullet", "ode")
+
+
+def strategy_order(names):
+    names = set(names)
+    known = [s for s in KNOWN_STRATEGY_ORDER if s in names]
+    return known + sorted(names - set(known))
+
+
+@dataclass
+class Cell:
+    """Average and maximum CD time of one (strategy, resolution, objects) over all repeats and frames."""
+    strategy: str
+    resolution: int
+    objects: int
+    average: float
+    maximum: float
+    frames: int
+    false_negatives: int
+
+
+@dataclass
+class EnvironmentRun:
+    name: str                     # the folder name, e.g. env1
+    folder: Path
+    status: str                   # "ok", "missing", "empty", "incomplete"
+    environment: str = ""         # the environment column of the data (normally == name)
+    frames: list = field(default_factory=list)   # frames.csv rows (dicts, typed)
+    cells: list = field(default_factory=list)    # list[Cell]
+    meta: dict = field(default_factory=dict)
+    notes: list = field(default_factory=list)    # facts about the inputs a reader should know
+
+    @property
+    def strategies(self):
+        return strategy_order({c.strategy for c in self.cells})
+
+    @property
+    def has_frames(self):
+        return bool(self.frames)
+
+
+def discover_environments(result_dir: Path):
+    """The thesis' environments plus any other env* folder present, in a stable order."""
+    found = {p.name for p in result_dir.iterdir() if p.is_dir() and p.name.startswith("env")}
+    return list(THESIS_ENVIRONMENTS) + sorted(found - set(THESIS_ENVIRONMENTS))
+
+
+def read_environment(result_dir: Path, name: str) -> EnvironmentRun:
+    folder = result_dir / name
+    run = EnvironmentRun(name=name, folder=folder, status="ok")
+    if not folder.is_dir():
+        run.status = "missing"
+        return run
+    frames_csv, tables_csv, meta_json = folder / "frames.csv", folder / "tables.csv", folder / "meta.json"
+    if meta_json.exists():
+        run.meta = _read_meta(meta_json)
+    else:
+        run.notes.append("meta.json is missing: machine, GL renderer and commit unknown")
+
+    table_cells = _read_table_cells(tables_csv) if tables_csv.exists() else None
+    if frames_csv.exists():
+        run.frames = read_typed_csv(frames_csv, FRAME_REQUIRED, FRAME_INTS, FRAME_TIMES)
+        run.cells = cells_from_frames(run.frames)
+        if table_cells is not None:
+            run.notes.extend(_disagreements(run.cells, table_cells, tables_csv))
+    elif table_cells is not None:
+        run.cells = table_cells
+        run.notes.append("frames.csv is missing: tables from tables.csv, no per-frame figures, "
+                         "false negatives from tables.csv")
+    if not run.cells:
+        # The runner keeps frames.csv.partial while a sweep is in progress or was interrupted.
+        partial = (folder / "frames.csv.partial").exists()
+        run.status = "incomplete" if partial else "empty"
+        return run
+    environments = sorted({r["environment"] for r in run.frames}) if run.frames else []
+    run.environment = environments[0] if environments else name
+    if len(environments) > 1:
+        run.notes.append(f"frames.csv holds several environments ({', '.join(environments)}); "
+                         f"compared with the thesis as {run.environment}")
+    elif run.environment != name:
+        run.notes.append(f"folder {name} holds environment {run.environment}")
+    return run
+
+
+def cells_from_frames(frames):
+    groups = {}
+    for r in frames:
+        key = (r["strategy"], r["resolution"], r["objects"])
+        g = groups.setdefault(key, [0.0, 0.0, 0, 0])
+        g[0] += r["cd_ms"]
+        g[1] = max(g[1], r["cd_ms"])
+        g[2] += 1
+        g[3] += r["false_negatives"]
+    return [Cell(s, res, obj, total / n, peak, n, fn) for (s, res, obj), (total, peak, n, fn) in groups.items()]
+
+
+def _read_table_cells(path):
+    rows = read_typed_csv(path, TABLE_REQUIRED, ("resolution", "objects", "frames", "false_negatives"),
+                          ("cd_time_ms",), choices={"statistic": STATISTICS})
+    cells = {}
+    for r in rows:
+        key = (r["strategy"], r["resolution"], r["objects"])
+        c = cells.setdefault(key, Cell(*key, average=float("nan"), maximum=float("nan"),
+                                       frames=r.get("frames", 0), false_negatives=r.get("false_negatives", 0)))
+        setattr(c, r["statistic"], r["cd_time_ms"])
+    return [c for c in cells.values() if c.average == c.average and c.maximum == c.maximum]
+
+
+def _disagreements(frame_cells, table_cells, tables_csv):
+    """tables.csv is derived from frames.csv by the runner; a mismatch means the two are from different runs."""
+    by_key = {(c.strategy, c.resolution, c.objects): c for c in table_cells}
+    bad = []
+    for c in frame_cells:
+        t = by_key.get((c.strategy, c.resolution, c.objects))
+        # tables.csv prints 4 decimals; frames.csv keeps more.
+        if t is None or abs(t.average - c.average) > 1e-3 or abs(t.maximum - c.maximum) > 1e-3:
+            bad.append(f"{c.strategy}@{c.resolution}/{c.objects}")
+    if bad:
+        return [f"{tables_csv.name} does not match frames.csv for {len(bad)} cell(s) "
+                f"(e.g. {', '.join(bad[:3])}); the report uses frames.csv"]
+    return []
+
+
+def _read_meta(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            meta = json.load(f)
+    except json.JSONDecodeError as e:
+        raise InputError(f"{path}:{e.lineno}: malformed JSON: {e.msg}") from None
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{path}: cannot read: {e}") from None
+    if not isinstance(meta, dict):
+        raise InputError(f"{path}: expected a JSON object at the top level")
+    for key in ("machine", "gl", "config"):
+        if key in meta and not isinstance(meta[key], dict):
+            raise InputError(f"{path}: key {key}: expected a JSON object")
+    return meta
+
+
+def describe_machine(meta):
+    """(machine line, GL line, commit) for a meta.json, with 'unknown' where a field is absent."""
+    m, gl = meta.get("machine", {}), meta.get("gl", {})
+    cpu = m.get("cpu") or "unknown CPU"
+    cores = m.get("logical_cores")
+    mem = m.get("memory_gib")
+    parts = [cpu]
+    if cores:
+        parts.append(f"{cores} logical cores")
+    if isinstance(mem, (int, float)) and mem > 0:
+        parts.append(f"{mem:.1f} GiB memory")
+    if m.get("os"):
+        parts.append(m["os"])
+    machine = ", ".join(parts)
+    renderer = gl.get("renderer") or "unknown renderer"
+    gl_line = renderer + (f", OpenGL {gl['version']}" if gl.get("version") else "")
+    if gl.get("vendor"):
+        gl_line += f" ({gl['vendor']}"
+        gl_line += f", EGL {gl['platform']})" if gl.get("platform") else ")"
+    commit = m.get("git_commit") or meta.get("commit") or "unknown"
+    return machine, gl_line, commit
+
+
+def renderer_of(meta):
+    return meta.get("gl", {}).get("renderer") or "unknown GL renderer"
+
+
+def is_software_renderer(meta):
+    r = renderer_of(meta).lower()
+    return any(s in r for s in ("llvmpipe", "softpipe", "swiftshader", "swrast", "lavapipe"))

@@ -1,0 +1,68 @@
+"""Strict CSV reading shared by the run and thesis readers: typed columns, line-numbered errors."""
+
+import csv
+import math
+from pathlib import Path
+
+
+class InputError(Exception):
+    """An input file that cannot be read as documented; str() is the one-line message to print."""
+
+
+def read_typed_csv(path: Path, required, int_columns=(), float_columns=(), choices=None):
+    """Rows of `path` as dicts; the header must name every column in `required`.
+
+    `choices` maps a column to the values it may hold.
+
+    Extra columns are kept as strings so that a runner adding columns does not break the report.
+    Times must be finite and non-negative: a NaN or negative time is a broken measurement, not data.
+    """
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            reader = csv.reader(f)
+            header = next(reader, None)
+            if header is None:
+                raise InputError(f"{path}: empty file, expected a CSV header")
+            header = [h.strip() for h in header]
+            missing = [c for c in required if c not in header]
+            if missing:
+                raise InputError(f"{path}:1: header lacks column(s) {', '.join(missing)}")
+            rows = []
+            for row in reader:
+                line = reader.line_num
+                if not row or all(not cell.strip() for cell in row):
+                    continue
+                if len(row) != len(header):
+                    raise InputError(f"{path}:{line}: expected {len(header)} fields, got {len(row)}")
+                record = dict(zip(header, (cell.strip() for cell in row)))
+                for name in int_columns:
+                    if name in record:
+                        record[name] = _parse_int(path, line, name, record[name])
+                for name in float_columns:
+                    if name in record:
+                        record[name] = _parse_time(path, line, name, record[name])
+                for name, allowed in (choices or {}).items():
+                    if record.get(name) not in allowed:
+                        raise InputError(f"{path}:{line}: column {name}: expected one of "
+                                         f"{', '.join(allowed)}, got {record.get(name)!r}")
+                rows.append(record)
+            return rows
+    except (OSError, UnicodeDecodeError, csv.Error) as e:
+        raise InputError(f"{path}: cannot read: {e}") from e
+
+
+def _parse_int(path, line, name, text):
+    try:
+        return int(text)
+    except ValueError:
+        raise InputError(f"{path}:{line}: column {name}: expected an integer, got {text!r}") from None
+
+
+def _parse_time(path, line, name, text):
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{path}:{line}: column {name}: expected a number, got {text!r}") from None
+    if not math.isfinite(value) or value < 0:
+        raise InputError(f"{path}:{line}: column {name}: expected a finite non-negative number, got {text!r}")
+    return value
