@@ -7,6 +7,7 @@ import matplotlib
 
 matplotlib.use("Agg")  # headless: the report runs where there is no display
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.patches import Rectangle  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from .runs import STATISTICS, renderer_of  # noqa: E402
@@ -147,18 +148,28 @@ def _sweep_figure(cmp, thesis, name):
         ticks = sorted(set(lay.columns) | set(thesis_x))
         ax.set_xticks(ticks if len(ticks) <= 12 else ticks[::2])
         ax.grid(True, alpha=0.3)
-    # One legend below both panels: inside a panel it hides the curves it explains.
-    handles, labels = axes[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=8.5,
-               bbox_to_anchor=(0.5, 0.065), frameon=False)
+    _shared_legend(fig, axes[0], cmp.strategies + [s for s in thesis_strategies if s not in cmp.strategies])
     title = f"{run.name}: average and maximum CD time vs {'object count' if lay.axis == 'objects' else 'resolution'}, {lay.describe_fixed()}"
     fig.suptitle(title)
     _caption(fig, cmp, any_thesis)
-    legend_rows = (len(labels) + 4) // 5
-    fig.tight_layout(rect=(0, 0.08 + 0.045 * legend_rows, 1, 1))
+    fig.tight_layout(rect=(0, 0.17, 1, 1))
     _save(fig, run.folder, name)
     what = f"average and maximum CD time vs {lay.axis} ({lay.describe_fixed()})"
     return Figure(name, title, what + (", thesis dashed" if any_thesis else ""))
+
+
+def _shared_legend(fig, ax, strategies):
+    """One legend below both panels (inside a panel it hides the curves it explains), a column per
+    strategy: this run's line on top, the thesis' dashed line of the same strategy under it."""
+    by_label = dict(zip(*reversed(ax.get_legend_handles_labels())))
+    blank = Rectangle((0, 0), 1, 1, visible=False)
+    handles, labels = [], []
+    for s in strategies:   # the legend fills column by column
+        for label in (s, f"{s} (thesis)"):
+            handles.append(by_label.get(label, blank))
+            labels.append(label if label in by_label else "")
+    fig.legend(handles, labels, loc="lower center", ncol=len(strategies), fontsize=8.5,
+               bbox_to_anchor=(0.5, 0.065), frameon=False)
 
 
 def _per_frame_figure(cmp, slice_, name, strategies, heading):

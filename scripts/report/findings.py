@@ -27,6 +27,11 @@ def _cols(cmp, columns):
     return f"{columns[0]}-{columns[-1]} {unit}" if len(columns) > 2 else f"{columns[0]} and {columns[1]} {unit}"
 
 
+def _factor(value):
+    """A factor with as many decimals as a reader needs: 1.53x, 12.4x, 224x."""
+    return f"{value:.0f}x" if value >= 100 else f"{value:.1f}x" if value >= 10 else f"{value:.2f}x"
+
+
 def _mean(values):
     return sum(values) / len(values)
 
@@ -99,6 +104,14 @@ def _ordering(cmp, shared, f):
                 + " < ".join(f"{s} ({theirs[s]:.2f} ms)" for s in order_theirs)
                 + f". Same order in {same_columns} of {len(columns)} column(s).")
         (f.agrees if order_ours == order_theirs else f.differs).append(text)
+        if REFERENCE in shared:
+            # The thesis' central claim, column by column: its approach is the fastest of the three.
+            fastest = sum(1 for c in columns if min(shared, key=lambda s: cmp.ours[(statistic, s, c)]) == REFERENCE)
+            thesis_fastest = sum(1 for c in columns
+                                 if min(shared, key=lambda s: cmp.thesis[(statistic, s, c)]) == REFERENCE)
+            text = (f"{REFERENCE} has the lowest {statistic} CD time of {', '.join(shared)} in {fastest} of "
+                    f"{len(columns)} column(s) here, {thesis_fastest} of {len(columns)} in the thesis.")
+            (f.agrees if fastest == thesis_fastest else f.differs).append(text)
 
 
 def _speedups(cmp, f):
@@ -133,14 +146,14 @@ def _absolute(cmp, shared, f):
     if not factors:
         return
     lo, hi = min(factors.values()), max(factors.values())
-    each = ", ".join(f"{s} {v:.2f}x" for s, v in factors.items())
+    each = ", ".join(f"{s} {_factor(v)}" for s, v in factors.items())
     renderer = renderer_of(cmp.run.meta)
     if SAME_MAGNITUDE[0] <= lo and hi <= SAME_MAGNITUDE[1]:
         f.agrees.append(f"Absolute average CD times are of the thesis' magnitude ({each} the thesis' value) "
                         f"on {renderer}.")
     else:
         software = ", a software rasteriser on the CPU," if is_software_renderer(cmp.run.meta) else ""
-        f.differs.append(f"Absolute average CD times are {lo:.2f}-{hi:.2f}x the thesis' ({each}) on "
+        f.differs.append(f"Absolute average CD times are {_factor(lo)[:-1]}-{_factor(hi)} the thesis' ({each}) on "
                          f"{renderer}{software} against the thesis' {THESIS_HARDWARE}; absolute times are "
                          f"not comparable, the ratios are.")
 

@@ -9,7 +9,7 @@ FIGURE_RANGE = {"env1": "Figures 4.2-4.4", "env2": "Figures 4.6-4.9", "env3": "F
 STATUS_TEXT = {
     "missing": "no folder: this environment was not run",
     "empty": "folder without frames.csv or tables.csv: no results",
-    "incomplete": "only frames.csv.partial: the run was interrupted or is still going; no results yet",
+    "incomplete": "no frames.csv: the run was interrupted or is still going; no results yet",
 }
 
 
@@ -35,7 +35,8 @@ def _summary(sections):
     for s in sections:
         run = s["run"]
         if run.status != "ok":
-            out.append(f"- **{run.name}**: {STATUS_TEXT[run.status]}.")
+            progress = f" ({'; '.join(run.notes)})" if run.notes else ""
+            out.append(f"- **{run.name}**: {STATUS_TEXT[run.status]}{progress}.")
             continue
         lay = s["comparison"].layout
         frames = len(run.frames) if run.frames else sum(c.frames for c in run.cells)
@@ -63,6 +64,11 @@ def _correctness_sentence(sections):
     elif frames:
         text = (f"Correctness: 0 false negatives in every environment and strategy ({frames} frames checked "
                 f"against the ground truth): no colliding pair was culled or split across sets.")
+        known = [r for r in rows if r.checked and r.truth_pairs is not None]
+        if known and not any(r.truth_pairs for r in known):
+            # Zero misses out of zero contacts proves nothing; say so rather than sound reassuring.
+            text += (" But the ground truth found no colliding pair in any of these frames, so no contact was "
+                     "there to be missed: a longer run is needed to check correctness.")
     if unchecked:
         text += (" " if text else "") + (f"**Not checked**: {', '.join(unchecked)} ran without the ground truth "
                                          f"(--no-truth), so false negatives there are unknown.")
@@ -91,12 +97,14 @@ def _correctness(sections):
     rows = [r for s in sections for r in s["correctness"]]
     out = ["## Correctness", "", _correctness_sentence(sections), ""]
     if rows:
-        out.append("| environment | strategy | frames | false negatives | false positives |")
-        out.append("|---|---|---:|---:|---:|")
+        out.append("| environment | strategy | frames | ground-truth colliding pairs (sum over frames) "
+                   "| false negatives | false positives |")
+        out.append("|---|---|---:|---:|---:|---:|")
         for r in rows:
             fn = "not checked" if not r.checked else (f"**{r.false_negatives}**" if r.false_negatives else "0")
             fp = "" if r.false_positives is None or not r.checked else str(r.false_positives)
-            out.append(f"| {r.environment} | {r.strategy} | {r.frames} | {fn} | {fp} |")
+            truth = "" if r.truth_pairs is None or not r.checked else str(r.truth_pairs)
+            out.append(f"| {r.environment} | {r.strategy} | {r.frames} | {truth} | {fn} | {fp} |")
         out.append("")
     return out
 

@@ -76,8 +76,6 @@ def read_environment(result_dir: Path, name: str) -> EnvironmentRun:
     frames_csv, tables_csv, meta_json = folder / "frames.csv", folder / "tables.csv", folder / "meta.json"
     if meta_json.exists():
         run.meta = _read_meta(meta_json)
-    else:
-        run.notes.append("meta.json is missing: machine, GL renderer and commit unknown")
 
     table_cells = _read_table_cells(tables_csv) if tables_csv.exists() else None
     if frames_csv.exists():
@@ -90,10 +88,13 @@ def read_environment(result_dir: Path, name: str) -> EnvironmentRun:
         run.notes.append("frames.csv is missing: tables from tables.csv, no per-frame figures, "
                          "false negatives from tables.csv")
     if not run.cells:
-        # The runner keeps frames.csv.partial while a sweep is in progress or was interrupted.
-        partial = (folder / "frames.csv.partial").exists()
-        run.status = "incomplete" if partial else "empty"
+        progress = _progress(folder)
+        run.status = "incomplete" if progress is not None else "empty"
+        if progress:
+            run.notes.append(progress)
         return run
+    if not run.meta:
+        run.notes.append("meta.json is missing: machine, GL renderer and commit unknown")
     environments = sorted({r["environment"] for r in run.frames}) if run.frames else []
     run.environment = environments[0] if environments else name
     if len(environments) > 1:
@@ -102,6 +103,19 @@ def read_environment(result_dir: Path, name: str) -> EnvironmentRun:
     elif run.environment != name:
         run.notes.append(f"folder {name} holds environment {run.environment}")
     return run
+
+
+def _progress(folder):
+    """How far an unfinished sweep got, from what the runner keeps while it works (run.json's plan and
+    the finished cells/), or '' when it only left frames.csv.partial; None when nothing says a run began."""
+    if (folder / "run.json").exists():
+        try:
+            plan = json.loads((folder / "run.json").read_text(encoding="utf-8")).get("plan", [])
+        except (OSError, ValueError, AttributeError):
+            plan = []
+        done = len(list((folder / "cells").glob("*.csv"))) if (folder / "cells").is_dir() else 0
+        return f"{done} of {len(plan)} cells finished" if plan else f"{done} cells finished"
+    return "" if (folder / "frames.csv.partial").exists() else None
 
 
 def cells_from_frames(frames):
