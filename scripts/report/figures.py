@@ -110,6 +110,8 @@ def _maybe_log(ax, values, label):
     if positive and len(positive) == len(values) and max(positive) / min(positive) > LOG_SPREAD:
         ax.set_yscale("log")
         label += ", log scale"
+    else:
+        ax.set_ylim(bottom=0)   # a linear axis cut above zero exaggerates small differences
     ax.set_ylabel(label)
 
 
@@ -142,7 +144,7 @@ def _sweep_figure(cmp, thesis, name):
                         color=colour(strategy, cmp.strategies), label=f"{strategy} (thesis)")
                 values += [v for _, v in pts]
         ax.set_title(f"{statistic.capitalize()} CD time")
-        ax.set_xlabel("Objects" if lay.axis == "objects" else "Frame-buffer resolution (pixels, square)")
+        ax.set_xlabel("Number of objects" if lay.axis == "objects" else "Frame-buffer resolution (pixels, square)")
         _maybe_log(ax, values, f"{statistic.capitalize()} CD time (ms)")
         # Ticks on the measured columns (500, 600, ... or 50, 75, ...), not at round numbers between them.
         ticks = sorted(set(lay.columns) | set(thesis_x))
@@ -212,13 +214,15 @@ def _sets_figure(cmp, slice_, name, strategies):
                     linestyle="-" if strategy == "ours" else "--", linewidth=1.4 if strategy == "ours" else 2.4,
                     marker="o" if len(rows) <= 60 else None, markersize=3)
             top = max(top, max(r["sets"] for r in rows))
+    handles, labels = ax.get_legend_handles_labels()
+    order = sorted(range(len(labels)), key=lambda i: strategies.index(labels[i]))
+    ax.legend([handles[i] for i in order], [labels[i] for i in order], fontsize=8)
     ax.set_xlabel("Frame")
     ax.set_ylabel("Collision-independent sets")
     ax.set_ylim(0, top + 1)
     ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
     title = (f"{cmp.run.name}: collision-independent sets per frame, {resolution}x{resolution} pixels, "
              f"{objects} objects, repeat {repeat}")
     ax.set_title(title, fontsize=11)
