@@ -24,6 +24,7 @@ struct RunOptions {
   std::optional<std::filesystem::path> replayFile;
   bool groundTruth = true;  // --no-truth turns it off
   bool quiet = false;
+  std::optional<std::string> shard;  // "i/n": run the i-th share of the cells
   std::vector<std::string> commandLine;  // recorded in meta.json
 };
 

@@ -14,13 +14,17 @@
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 #include "harness/AtomicFile.h"
-#include "harness/CdTimeTables.h"
-#include "harness/FrameCsv.h"
+#include "harness/CellStore.h"
+#include "harness/InterruptFlag.h"
+#include "harness/ProgressBar.h"
+#include "harness/RunOutputs.h"
+#include "harness/RunPlan.h"
 #include "harness/MachineInfo.h"
 #include "harness/TruthComparison.h"
 #include "render/HeadlessGlContext.h"
 #include "scenes/AssetPath.h"
 #include "scenes/ConfigLoader.h"
+#include "scenes/Fnv1a.h"
 #include "scenes/PoseRecording.h"
 #include "scenes/SceneBuilder.h"
 
@@ -46,16 +50,6 @@ std::string readWholeFile(const std::filesystem::path& file) {
   return ss.str();
 }
 
-void checkWritableDirectory(const std::filesystem::path& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  const auto probe = dir / ".cdbench-write-probe";
-  std::ofstream out(probe);
-  if (ec || !out)
-    throw RunError(dir.string() + ": output folder is not writable");
-  out.close();
-  std::filesystem::remove(probe, ec);
-}
 }  // namespace
 
 ScenarioConfig effectiveConfig(const RunOptions& options) {
@@ -87,136 +81,209 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
   return config;
 }
 
+namespace {
+
+// What a cell's frames and answers depend on besides its own key.
+std::uint64_t identityHash(const ScenarioConfig& config, const RunOptions& options,
+                           const std::string& configText) {
+  Fnv1a h;
+  h.text(configText);
+  h.i64(config.dynamics.frames);
+  h.u64(config.seed);
+  h.byte(config.culling.conservative ? 1 : 0);
+  h.f64(config.culling.rawDepthOffset);
+  h.byte(options.groundTruth ? 1 : 0);
+  h.text(options.replayFile ? options.replayFile->string() : std::string());
+  return h.value();
+}
+
+nlohmann::json glJson(const GlInfo& info) {
+  return {{"platform", info.platform}, {"egl_vendor", info.eglVendor},
+          {"egl_version", info.eglVersion}, {"vendor", info.glVendor},
+          {"renderer", info.glRenderer}, {"version", info.glVersion}};
+}
+
+// The recording of a cell's (object count, repeat): replayed from --replay, reused from the run
+// folder when an earlier invocation simulated it, else simulated now and kept there.
+PoseRecording framesFor(const Cell& cell, const ScenarioConfig& cfg, const SceneGeometry& scene,
+                        const RunOptions& options, const CellStore& store) {
+  const std::uint64_t fingerprint = scenarioFingerprint(cfg, scene);
+  if (options.replayFile) {
+    PoseRecording r = readPoseRecording(*options.replayFile);
+    if (r.fingerprint != fingerprint || r.objectCount != scene.objectCount())
+      throw InputError(options.replayFile->string() +
+                       ": recording was made from another config (fingerprint or object count differs)");
+    if (r.frameCount() == 0) throw InputError(options.replayFile->string() + ": holds no frame");
+    return r;
+  }
+  const auto kept = store.recordingPath(cell);
+  const std::uint64_t seed = cfg.seed + static_cast<std::uint64_t>(cell.repeat);
+  if (std::filesystem::exists(kept)) {
+    try {
+      PoseRecording r = readPoseRecording(kept);
+      if (r.fingerprint == fingerprint && r.seed == seed &&
+          r.frameCount() == static_cast<std::uint32_t>(cfg.dynamics.frames))
+        return r;
+    } catch (const InputError&) {
+      // A damaged leftover is simulated again below.
+    }
+  }
+  PoseRecording r = recordSimulation(cfg, scene, seed);
+  writePoseRecording(r, kept);
+  return r;
+}
+
+}  // namespace
+
 RunSummary runScenario(const RunOptions& options) {
   const ScenarioConfig config = effectiveConfig(options);
+  const Shard shard = options.shard ? parseShard(*options.shard) : Shard{};
   const auto assetDirs = assetSearchPath(options.assetDirs);
-  checkWritableDirectory(options.outDir);
+  const std::string configText = readWholeFile(options.configPath);
+
+  const std::vector<Cell> plan = planCells(config);
+  RunIdentity identity{config.environment, identityHash(config, options, configText),
+                       options.configPath.string(), configText, {}};
+  for (const auto& c : plan) identity.plan.push_back(c.key());
+  const CellStore store(options.outDir, identity);
+
+  RunSummary summary;
+  std::vector<Cell> todo;
+  for (const auto& c : shareOf(plan, shard)) {
+    if (store.done(c))
+      ++summary.cellsSkipped;
+    else
+      todo.push_back(c);
+  }
 
   HeadlessGlContext gl(parseGlPlatform(options.glPlatform));
   GlOcclusionQueryBackend backend(gl, {config.culling.conservative, config.culling.rawDepthOffset});
-
-  std::vector<int> counts = config.sweep.objectCounts;
-  if (counts.empty()) counts.push_back(-1);  // the config's own counts
 
   const auto& registry = StrategyRegistry::builtin();
   StrategyOptions strategyOptions;
   strategyOptions.culling = config.culling;
 
-  std::vector<FrameRecord> rows;
-  RunSummary summary;
-  const std::size_t cellsTotal = counts.size() * config.sweep.repeats *
-                                 config.sweep.strategies.size() * config.sweep.resolutions.size();
-  std::size_t cellsDone = 0;
-  const auto runStart = Clock::now();
+  installInterruptHandlers();
+  ProgressBar progress(todo.size(), static_cast<std::size_t>(config.dynamics.frames), !options.quiet);
 
-  for (int count : counts) {
-    const ScenarioConfig cfg = count < 0 ? config : withObjectCount(config, count);
-    const SceneGeometry scene = buildScene(cfg, assetDirs);
-    const int objects = movingBodies(scene);
-    std::optional<GroundTruth> truth;
-    if (options.groundTruth) truth.emplace(scene);
-    ExactPhase exact(scene);
-    backend.attachScene(scene);
+  std::optional<int> sceneCount;
+  std::optional<ScenarioConfig> cfg;
+  std::optional<SceneGeometry> scene;
+  std::optional<GroundTruth> truth;
+  std::optional<ExactPhase> exact;
+  PoseRecording recording;
+  std::vector<std::vector<ObjectPair>> truthPairs;
+  const Cell* framesOf = nullptr;
+  int objects = 0;
 
-    for (int repeat = 0; repeat < cfg.sweep.repeats; ++repeat) {
-      const std::uint64_t seed = cfg.seed + static_cast<std::uint64_t>(repeat);
-      PoseRecording recording;
-      if (options.replayFile) {
-        recording = readPoseRecording(*options.replayFile);
-        if (recording.fingerprint != scenarioFingerprint(cfg, scene))
-          throw InputError(options.replayFile->string() +
-                           ": recording was made from another config (fingerprint differs)");
-      } else {
-        recording = recordSimulation(cfg, scene, seed);
-      }
+  for (const Cell& cell : todo) {
+    if (!sceneCount || *sceneCount != cell.objectCount) {
+      sceneCount = cell.objectCount;
+      cfg = cell.objectCount < 0 ? config : withObjectCount(config, cell.objectCount);
+      exact.reset();
+      truth.reset();
+      scene = buildScene(*cfg, assetDirs);
+      objects = movingBodies(*scene);
+      exact.emplace(*scene);
+      if (options.groundTruth) truth.emplace(*scene);
+      backend.attachScene(*scene);
+      framesOf = nullptr;
+    }
+    if (!framesOf || !framesOf->sameFrames(cell)) {
+      framesOf = &cell;
+      recording = framesFor(cell, *cfg, *scene, options, store);
       if (options.recordFile) writePoseRecording(recording, *options.recordFile);
-
-      std::vector<std::vector<ObjectPair>> truthPairs(recording.frameCount());
+      truthPairs.assign(recording.frameCount(), {});
       if (truth)
         for (std::uint32_t f = 0; f < recording.frameCount(); ++f)
           truthPairs[f] = truth->compute(recording.frame(f)).collidingPairs;
+    }
 
-      for (const auto& name : cfg.sweep.strategies) {
-        for (int resolution : cfg.sweep.resolutions) {
-          strategyOptions.resolution = resolution;
-          auto strategy = registry.create(name, strategyOptions);
-          strategy->attach(scene, backend);
-          // Warm-up on the first frame: shader compilation and first-use costs are not CD time.
-          (void)strategy->cull({recording.frame(0), 0});
+    progress.startCell(cfg->environment + " " + cell.strategy + " objects=" + std::to_string(objects) +
+                       " repeat=" + std::to_string(cell.repeat) + " res=" +
+                       std::to_string(cell.resolution));
+    strategyOptions.resolution = cell.resolution;
+    auto strategy = registry.create(cell.strategy, strategyOptions);
+    strategy->attach(*scene, backend);
+    // Warm-up on the first frame: shader compilation and first-use costs are not CD time.
+    (void)strategy->cull({recording.frame(0), 0});
 
-          for (std::uint32_t f = 0; f < recording.frameCount(); ++f) {
-            const auto poses = recording.frame(f);
-            const auto t0 = Clock::now();
-            CullingResult culled = strategy->cull({poses, static_cast<int>(f)});
-            const auto t1 = Clock::now();
-            const bool decidedByStrategy = culled.decided.has_value();
-            const CollisionReport report =
-                decidedByStrategy ? std::move(*culled.decided) : exact.run(poses, culled.sets);
-            const auto t2 = Clock::now();
+    std::vector<FrameRecord> rows;
+    for (std::uint32_t f = 0; f < recording.frameCount(); ++f) {
+      const auto poses = recording.frame(f);
+      const auto t0 = Clock::now();
+      CullingResult culled = strategy->cull({poses, static_cast<int>(f)});
+      const auto t1 = Clock::now();
+      const bool decidedByStrategy = culled.decided.has_value();
+      const CollisionReport report =
+          decidedByStrategy ? std::move(*culled.decided) : exact->run(poses, culled.sets);
+      const auto t2 = Clock::now();
 
-            FrameRecord r;
-            r.environment = cfg.environment;
-            r.strategy = name;
-            r.resolution = resolution;
-            r.objects = objects;
-            r.repeat = repeat;
-            r.frame = static_cast<int>(f);
-            r.cullMs = msSince(t0, t1);
-            r.exactMs = msSince(t1, t2);
-            r.cdMs = msSince(t0, t2);
-            r.pcsSize = culled.counters.pcsSize;
-            r.sets = culled.counters.sets;
-            r.pcsTriangles = culled.counters.pcsTriangles;
-            r.pairsTested = report.pairsTested;
-            r.triangleTests = report.triangleTests;
-            r.collidingPairs = report.collidingPairs.size();
-            r.queries = culled.counters.visibility.queries;
-            r.draws = culled.counters.visibility.draws;
-            r.trianglesDrawn = culled.counters.visibility.trianglesDrawn;
-            if (truth) {
-              auto cmp = compareWithTruth(truthPairs[f], report.collidingPairs, culled.sets,
-                                          scene.objectCount());
-              if (decidedByStrategy) cmp.cullingMisses = cmp.falseNegatives;  // no sets to split
-              r.truthPairs = truthPairs[f].size();
-              r.falseNegatives = cmp.falseNegatives;
-              r.falsePositives = cmp.falsePositives;
-              r.cullingMisses = cmp.cullingMisses;
-              summary.falseNegatives += cmp.falseNegatives;
-              summary.falsePositives += cmp.falsePositives;
-            }
-            rows.push_back(std::move(r));
-          }
-          ++cellsDone;
-          if (!options.quiet) {
-            std::fprintf(stderr, "[%zu/%zu] %s %s objects=%d repeat=%d res=%d  (%.0f s)\n",
-                         cellsDone, cellsTotal, cfg.environment.c_str(), name.c_str(), objects,
-                         repeat, resolution, msSince(runStart, Clock::now()) / 1000.0);
-          }
-        }
+      FrameRecord r;
+      r.environment = cfg->environment;
+      r.strategy = cell.strategy;
+      r.resolution = cell.resolution;
+      r.objects = objects;
+      r.repeat = cell.repeat;
+      r.frame = static_cast<int>(f);
+      r.cullMs = msSince(t0, t1);
+      r.exactMs = msSince(t1, t2);
+      r.cdMs = msSince(t0, t2);
+      r.pcsSize = culled.counters.pcsSize;
+      r.sets = culled.counters.sets;
+      r.pcsTriangles = culled.counters.pcsTriangles;
+      r.pairsTested = report.pairsTested;
+      r.triangleTests = report.triangleTests;
+      r.collidingPairs = report.collidingPairs.size();
+      r.queries = culled.counters.visibility.queries;
+      r.draws = culled.counters.visibility.draws;
+      r.trianglesDrawn = culled.counters.visibility.trianglesDrawn;
+      if (truth) {
+        auto cmp = compareWithTruth(truthPairs[f], report.collidingPairs, culled.sets,
+                                    scene->objectCount());
+        if (decidedByStrategy) cmp.cullingMisses = cmp.falseNegatives;  // no sets to split
+        r.truthPairs = truthPairs[f].size();
+        r.falseNegatives = cmp.falseNegatives;
+        r.falsePositives = cmp.falsePositives;
+        r.cullingMisses = cmp.cullingMisses;
+        summary.falseNegatives += cmp.falseNegatives;
+        summary.falsePositives += cmp.falsePositives;
+      }
+      rows.push_back(std::move(r));
+      progress.frameDone();
+      if (interruptRequested()) {
+        progress.finish();
+        throw RunInterrupted{interruptSignal(), summary.cellsSkipped + summary.cellsRun};
       }
     }
+    store.save(cell, rows);
+    ++summary.cellsRun;
+    progress.cellDone();
   }
+  progress.finish();
 
-  std::ostringstream csv;
-  writeFrameCsvHeader(csv);
-  for (const auto& r : rows) writeFrameCsvRow(csv, r);
-  writeFileAtomically(options.outDir / "frames.csv", csv.str());
+  nlohmann::json shardMeta;
+  shardMeta["shard"] = std::to_string(shard.index) + "/" + std::to_string(shard.count);
+  shardMeta["created_utc"] = utcTimestamp();
+  shardMeta["command_line"] = options.commandLine;
+  shardMeta["machine"] = toJson(probeMachine());
+  shardMeta["gl"] = glJson(gl.info());
+  writeFileAtomically(options.outDir /
+                          ("shard-" + std::to_string(shard.index) + "-of-" +
+                           std::to_string(shard.count) + ".json"),
+                      shardMeta.dump(2) + "\n");
 
-  const auto cells = summariseCdTimes(rows);
-  writeCdTimeTablesCsv(options.outDir / "tables.csv", cells);
-  const GlInfo& info = gl.info();
-  std::string md = "# CD time tables: " + config.environment + "\n\nGL renderer: " +
-                   info.glRenderer + " (" + info.glVersion + ")\n\n" + cdTimeTablesMarkdown(cells);
-  writeFileAtomically(options.outDir / "tables.md", md);
+  for (const auto& c : plan)
+    if (!store.done(c)) return summary;  // other shards still to come: `cdbench merge` joins them
 
+  const auto rows = store.load(plan);
   nlohmann::json meta;
   meta["cdbench_version"] = "0.1.0";
   meta["created_utc"] = utcTimestamp();
   meta["command_line"] = options.commandLine;
-  meta["machine"] = toJson(probeMachine());
-  meta["gl"] = {{"platform", info.platform},   {"egl_vendor", info.eglVendor},
-                {"egl_version", info.eglVersion}, {"vendor", info.glVendor},
-                {"renderer", info.glRenderer},  {"version", info.glVersion}};
+  meta["machine"] = shardMeta["machine"];
+  meta["gl"] = shardMeta["gl"];
+  meta["shards"] = nlohmann::json::array({shardMeta});
   meta["config"] = {{"path", options.configPath.string()},
                     {"environment", config.environment},
                     {"seed", config.seed},
@@ -227,12 +294,19 @@ RunSummary runScenario(const RunOptions& options) {
                     {"strategies", config.sweep.strategies},
                     {"conservative", config.culling.conservative},
                     {"ground_truth", options.groundTruth},
-                    {"text", readWholeFile(options.configPath)}};
-  meta["summary"] = {{"frame_rows", rows.size()},
-                     {"false_negatives", summary.falseNegatives},
-                     {"false_positives", summary.falsePositives}};
-  writeFileAtomically(options.outDir / "meta.json", meta.dump(2) + "\n");
+                    {"text", configText}};
+  std::uint64_t fn = 0, fp = 0;
+  for (const auto& r : rows) {
+    fn += r.falseNegatives;
+    fp += r.falsePositives;
+  }
+  meta["summary"] = {{"frame_rows", rows.size()}, {"cells", plan.size()},
+                     {"false_negatives", fn}, {"false_positives", fp}};
+  writeRunOutputs(options.outDir, rows, meta);
   summary.frameRows = rows.size();
+  summary.complete = true;
+  summary.falseNegatives = fn;
+  summary.falsePositives = fp;
   return summary;
 }
 

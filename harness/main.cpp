@@ -5,9 +5,11 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 
 #include "core/Errors.h"
 #include "culling/StrategyRegistry.h"
+#include "harness/MergeRuns.h"
 #include "harness/RunOptions.h"
 #include "harness/ScenarioRunner.h"
 #include "render/HeadlessGlContext.h"
@@ -61,6 +63,14 @@ int main(int argc, char** argv) {
   runCmd->add_flag("--raw", raw, "raw rasterisation (no conservative widening): may miss contacts");
   runCmd->add_flag("--no-truth", noTruth, "skip the ground truth");
   runCmd->add_flag("--quiet", run.quiet, "no progress on stderr");
+  std::string shard;
+  runCmd->add_option("--shard", shard, "run the i-th of n shares of the cells (i/n, 1-based)");
+
+  std::filesystem::path mergeOut;
+  std::vector<std::filesystem::path> mergeDirs;
+  auto* mergeCmd = app.add_subcommand("merge", "join the cells of shards into frames, tables, meta");
+  mergeCmd->add_option("--out", mergeOut, "output folder")->required();
+  mergeCmd->add_option("dirs", mergeDirs, "run folders of the shards")->required();
 
   try {
     app.parse(argc, argv);
@@ -73,6 +83,12 @@ int main(int argc, char** argv) {
     if (*list) {
       for (const auto& name : cdb::StrategyRegistry::builtin().names())
         std::printf("%-12s %s\n", name.c_str(), cdb::StrategyRegistry::builtin().description(name).c_str());
+      return 0;
+    }
+    if (*mergeCmd) {
+      const auto merged = cdb::mergeRuns(mergeOut, mergeDirs);
+      std::fprintf(stderr, "merged %zu cells, %zu frame rows into %s\n", merged.cells,
+                   merged.frameRows, mergeOut.c_str());
       return 0;
     }
     if (!strategies.empty()) {
@@ -97,12 +113,22 @@ int main(int argc, char** argv) {
     run.groundTruth = !noTruth;
     if (!record.empty()) run.recordFile = record;
     if (!replay.empty()) run.replayFile = replay;
+    if (!shard.empty()) run.shard = shard;
     for (int i = 0; i < argc; ++i) run.commandLine.emplace_back(argv[i]);
 
     const auto summary = cdb::runScenario(run);
-    std::fprintf(stderr, "wrote %zu frame rows to %s (false negatives: %llu)\n", summary.frameRows,
-                 run.outDir.c_str(), static_cast<unsigned long long>(summary.falseNegatives));
+    if (summary.complete)
+      std::fprintf(stderr, "wrote %zu frame rows to %s (%zu cells measured, %zu resumed; false negatives: %llu)\n",
+                   summary.frameRows, run.outDir.c_str(), summary.cellsRun, summary.cellsSkipped,
+                   static_cast<unsigned long long>(summary.falseNegatives));
+    else
+      std::fprintf(stderr, "shard done: %zu cells measured, %zu resumed in %s; join the shards with cdbench merge\n",
+                   summary.cellsRun, summary.cellsSkipped, run.outDir.c_str());
     return 0;
+  } catch (const cdb::RunInterrupted& e) {
+    std::fprintf(stderr, "cdbench: interrupted (signal %d): %zu finished cells kept in %s; run the same command to resume\n",
+                 e.signal, e.cellsDone, run.outDir.c_str());
+    return 128 + e.signal;
   } catch (const cdb::InputError& e) {
     std::fprintf(stderr, "cdbench: error: %s\n", e.what());
     return 2;

@@ -1,0 +1,30 @@
+#include "harness/RunOutputs.h"
+
+#include <sstream>
+
+#include "harness/AtomicFile.h"
+#include "harness/CdTimeTables.h"
+#include "harness/FrameCsv.h"
+
+namespace cdb {
+
+void writeRunOutputs(const std::filesystem::path& dir, const std::vector<FrameRecord>& rows,
+                     const nlohmann::json& meta) {
+  std::ostringstream csv;
+  writeFrameCsvHeader(csv);
+  for (const auto& r : rows) writeFrameCsvRow(csv, r);
+  writeFileAtomically(dir / "frames.csv", csv.str());
+
+  const auto cells = summariseCdTimes(rows);
+  writeCdTimeTablesCsv(dir / "tables.csv", cells);
+  std::string environment = rows.empty() ? std::string() : rows.front().environment;
+  std::string renderer;
+  if (meta.contains("gl") && meta["gl"].contains("renderer"))
+    renderer = meta["gl"]["renderer"].get<std::string>() + " (" +
+               meta["gl"].value("version", std::string()) + ")";
+  writeFileAtomically(dir / "tables.md", "# CD time tables: " + environment + "\n\nGL renderer: " +
+                                             renderer + "\n\n" + cdTimeTablesMarkdown(cells));
+  writeFileAtomically(dir / "meta.json", meta.dump(2) + "\n");
+}
+
+}  // namespace cdb

@@ -1,0 +1,16 @@
+#pragma once
+// The result files of a complete run (or of merged shards): frames.csv, tables.csv, tables.md,
+// meta.json, each written atomically, meta.json last.
+#include <filesystem>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/FrameRecord.h"
+
+namespace cdb {
+
+void writeRunOutputs(const std::filesystem::path& dir, const std::vector<FrameRecord>& rows,
+                     const nlohmann::json& meta);
+
+}  // namespace cdb

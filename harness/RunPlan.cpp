@@ -1,0 +1,51 @@
+#include "harness/RunPlan.h"
+
+#include "core/Errors.h"
+
+namespace cdb {
+
+std::string Cell::key() const {
+  return "o" + (objectCount < 0 ? std::string("-") : std::to_string(objectCount)) + "_r" +
+         std::to_string(repeat) + "_" + strategy + "_" + std::to_string(resolution);
+}
+
+Shard parseShard(const std::string& text) {
+  const auto slash = text.find('/');
+  Shard s;
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    std::size_t used = 0;
+    s.index = std::stoi(text.substr(0, slash), &used);
+    if (used != slash) throw std::invalid_argument("index");
+    const std::string n = text.substr(slash + 1);
+    s.count = std::stoi(n, &used);
+    if (used != n.size()) throw std::invalid_argument("count");
+  } catch (const std::exception&) {
+    throw InputError("--shard '" + text + "': expected i/n, e.g. 1/4");
+  }
+  if (s.count < 1 || s.index < 1 || s.index > s.count)
+    throw InputError("--shard '" + text + "': expected 1 <= i <= n");
+  return s;
+}
+
+std::vector<Cell> planCells(const ScenarioConfig& config) {
+  std::vector<int> counts = config.sweep.objectCounts;
+  if (counts.empty()) counts.push_back(-1);
+  std::vector<Cell> cells;
+  for (int count : counts)
+    for (int repeat = 0; repeat < config.sweep.repeats; ++repeat)
+      for (const auto& strategy : config.sweep.strategies)
+        for (int resolution : config.sweep.resolutions)
+          cells.push_back({count, repeat, strategy, resolution});
+  return cells;
+}
+
+std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard) {
+  std::vector<Cell> out;
+  for (std::size_t k = 0; k < cells.size(); ++k)
+    if (static_cast<int>(k % static_cast<std::size_t>(shard.count)) == shard.index - 1)
+      out.push_back(cells[k]);
+  return out;
+}
+
+}  // namespace cdb

@@ -1,0 +1,41 @@
+#pragma once
+// The cells of a run: every (object count, repeat, strategy, resolution) is measured on its own,
+// so a run can stop and resume, or be split into shards and merged.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scenes/ScenarioConfig.h"
+
+namespace cdb {
+
+struct Cell {
+  int objectCount = -1;  // count of sweep.countedGroup; -1 = the config's own counts
+  int repeat = 0;
+  std::string strategy;
+  int resolution = 0;
+
+  // File-name-safe and unique within a run: o50_r0_cullide_800 (o- when the config's counts).
+  [[nodiscard]] std::string key() const;
+  // Cells sharing a simulation (same object count and repeat).
+  [[nodiscard]] bool sameFrames(const Cell& other) const {
+    return objectCount == other.objectCount && repeat == other.repeat;
+  }
+};
+
+// A share of the cells: the i-th of n (1-based), cells dealt round-robin in plan order.
+struct Shard {
+  int index = 1;
+  int count = 1;
+  [[nodiscard]] bool whole() const { return count == 1; }
+};
+
+// Parses "i/n" (1 <= i <= n). Throws InputError.
+[[nodiscard]] Shard parseShard(const std::string& text);
+
+// Every cell of the config's sweep, grouped by (object count, repeat) so that each group's frames
+// are simulated once, then strategies, then resolutions.
+[[nodiscard]] std::vector<Cell> planCells(const ScenarioConfig& config);
+[[nodiscard]] std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard);
+
+}  // namespace cdb
