@@ -7,8 +7,9 @@ packages=(
   build-essential cmake pkg-config git
   libode-dev libeigen3-dev libassimp-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libgmp-dev
   libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri
+  libfcl-dev libbullet-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-matplotlib
+  python3 python3-matplotlib parallel
 )
 
 missing=()

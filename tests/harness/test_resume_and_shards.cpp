@@ -1,0 +1,169 @@
+// Interrupted runs keep their finished cells and resume without redoing them; shards run with
+// GNU parallel and merged give the same frames as one unsharded run.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "harness/FrameCsv.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kBinary = std::string(CDBENCH_BINARY_DIR) + "/cdbench";
+const std::string kEnv3 = std::string(CDBENCH_SOURCE_DIR) + "/configs/env3.yaml";
+
+// A small env3 sweep: 2 counts x 2 repeats x 2 strategies x 2 resolutions = 16 cells.
+std::vector<std::string> sweepArgs(const fs::path& out) {
+  return {kBinary, "run", kEnv3, "--strategies", "cullide,sorted", "--objects", "12,16",
+          "--repeats", "2", "--frames", "4", "--resolutions", "64,96", "--quiet",
+          "--out", out.string()};
+}
+
+fs::path freshDir(const std::string& name) {
+  const auto dir = fs::temp_directory_path() / ("cdbench_resume_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+pid_t spawn(const std::vector<std::string>& args) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(argv[0], argv.data());
+    std::_Exit(127);
+  }
+  return pid;
+}
+
+int waitExit(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return -1;
+}
+
+int run(const std::vector<std::string>& args) { return waitExit(spawn(args)); }
+
+std::size_t cellCount(const fs::path& out) {
+  std::size_t n = 0;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(out / "cells", ec)) n += e.path().extension() == ".csv";
+  return n;
+}
+
+// Waits until at least `cells` cells are finished, then stops the run with `signal`.
+int interruptAfter(const fs::path& out, std::size_t cells, int signal) {
+  const pid_t pid = spawn(sweepArgs(out));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (cellCount(out) < cells && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ::kill(pid, signal);
+  return waitExit(pid);
+}
+
+std::map<std::string, fs::file_time_type> cellTimes(const fs::path& out) {
+  std::map<std::string, fs::file_time_type> times;
+  for (const auto& e : fs::directory_iterator(out / "cells"))
+    times[e.path().filename().string()] = fs::last_write_time(e.path());
+  return times;
+}
+
+// Everything but the timings: what the strategies answered on which frames.
+std::string answers(const fs::path& framesCsv) {
+  std::ostringstream s;
+  for (const auto& r : cdb::readFrameCsv(framesCsv))
+    s << r.environment << ' ' << r.strategy << ' ' << r.resolution << ' ' << r.objects << ' '
+      << r.repeat << ' ' << r.frame << ' ' << r.pcsSize << ' ' << r.sets << ' ' << r.pcsTriangles
+      << ' ' << r.pairsTested << ' ' << r.collidingPairs << ' ' << r.truthPairs << ' '
+      << r.falseNegatives << ' ' << r.queries << ' ' << r.draws << '\n';
+  return s.str();
+}
+
+void expectResumesWithoutRedoing(const fs::path& out) {
+  const std::size_t kept = cellCount(out);
+  ASSERT_GT(kept, 0u);
+  ASSERT_LT(kept, 16u) << "the run finished before it could be interrupted";
+  EXPECT_FALSE(fs::exists(out / "frames.csv")) << "an interrupted run must not look complete";
+  EXPECT_FALSE(fs::exists(out / "tables.csv"));
+  const auto before = cellTimes(out);
+
+  ASSERT_EQ(run(sweepArgs(out)), 0);
+  EXPECT_EQ(cellCount(out), 16u);
+  const auto after = cellTimes(out);
+  for (const auto& [name, time] : before) EXPECT_EQ(after.at(name), time) << name << " was redone";
+  EXPECT_EQ(cdb::readFrameCsv(out / "frames.csv").size(), 16u * 4);
+}
+
+TEST(Resume, SigtermFinishesTheFrameKeepsFinishedCellsAndTheSameCommandResumes) {
+  const auto out = freshDir("term");
+  EXPECT_EQ(interruptAfter(out, 3, SIGTERM), 128 + SIGTERM);
+  expectResumesWithoutRedoing(out);
+}
+
+TEST(Resume, SigkillLosesAtMostTheCellInProgress) {
+  const auto out = freshDir("kill");
+  EXPECT_EQ(interruptAfter(out, 5, SIGKILL), 128 + SIGKILL);
+  // No half-written cell: every file left is a complete cell of 4 frames.
+  for (const auto& e : fs::directory_iterator(out / "cells")) {
+    ASSERT_EQ(e.path().extension(), ".csv") << e.path();
+    EXPECT_EQ(cdb::readFrameCsv(e.path()).size(), 4u) << e.path();
+  }
+  expectResumesWithoutRedoing(out);
+}
+
+TEST(Resume, AnotherConfigInTheSameFolderIsRefused) {
+  const auto out = freshDir("other");
+  auto args = sweepArgs(out);
+  args[6] = "12";  // --objects 12 only: a sub-sweep of the same run is fine
+  ASSERT_EQ(run(args), 0);
+  auto other = sweepArgs(out);
+  other.insert(other.end(), {"--seed", "99"});
+  EXPECT_EQ(run(other), 2);
+}
+
+TEST(Shards, GnuParallelShardsMergedEqualTheUnshardedRun) {
+  if (std::system("command -v parallel >/dev/null 2>&1") != 0) GTEST_SKIP() << "GNU parallel missing";
+  const auto whole = freshDir("whole");
+  ASSERT_EQ(run(sweepArgs(whole)), 0);
+
+  const auto base = freshDir("shards");
+  fs::create_directories(base);
+  std::string cmd = "parallel --will-cite --halt now,fail=1 -j 3 '" + kBinary + " run " + kEnv3 +
+                    " --strategies cullide,sorted --objects 12,16 --repeats 2 --frames 4"
+                    " --resolutions 64,96 --quiet --shard {}/3 --out " + base.string() +
+                    "/s{}' ::: 1 2 3";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  for (int i = 1; i <= 3; ++i) EXPECT_FALSE(fs::exists(base / ("s" + std::to_string(i)) / "frames.csv"));
+
+  const auto merged = base / "merged";
+  ASSERT_EQ(run({kBinary, "merge", "--out", merged.string(), (base / "s1").string(),
+                 (base / "s2").string(), (base / "s3").string()}),
+            0);
+  EXPECT_EQ(answers(merged / "frames.csv"), answers(whole / "frames.csv"));
+  for (const char* f : {"tables.csv", "tables.md", "meta.json"}) EXPECT_TRUE(fs::exists(merged / f)) << f;
+
+  // Two shards only: the merge names what is missing and writes nothing.
+  const auto partial = base / "partial";
+  EXPECT_EQ(run({kBinary, "merge", "--out", partial.string(), (base / "s1").string(),
+                 (base / "s2").string()}),
+            2);
+  EXPECT_FALSE(fs::exists(partial / "frames.csv"));
+}
+
+}  // namespace
