@@ -142,13 +142,13 @@ def _beside(ours, thesis, fmt):
 def comparison_markdown(cmp, level=2):
     h = "#" * level
     lay = cmp.layout
-    source = f"Table {cmp.table}" if cmp.table else "no thesis table"
+    source = f" (Table {cmp.table} in parentheses)" if cmp.table else ""
     out = []
     header = f"| strategy \\ {lay.axis} | " + " | ".join(str(c) for c in lay.columns) + " |"
     rule = "|---|" + "---:|" * len(lay.columns)
     for statistic in STATISTICS:
         out.append(f"{h} {cmp.run.name}: {statistic} CD time (ms) by {AXIS_UNITS[lay.axis]}, "
-                   f"{lay.describe_fixed()} ({source} in parentheses)\n")
+                   f"{lay.describe_fixed()}{source}\n")
         out.append(header)
         out.append(rule)
         for strategy in cmp.strategies:

@@ -22,9 +22,10 @@ def _cols(cmp, columns):
     unit = "pixels" if cmp.layout.axis == "resolution" else "objects"
     if not columns:
         return "no columns"
-    if len(columns) == 1:
-        return f"{columns[0]} {unit}"
-    return f"{columns[0]}-{columns[-1]} {unit}" if len(columns) > 2 else f"{columns[0]} and {columns[1]} {unit}"
+    if len(columns) > 4:
+        return f"{columns[0]}-{columns[-1]} {unit} ({len(columns)} columns)"
+    names = [str(c) for c in columns]
+    return (" and ".join(names) if len(names) <= 2 else ", ".join(names[:-1]) + " and " + names[-1]) + f" {unit}"
 
 
 def _factor(value):

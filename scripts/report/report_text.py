@@ -8,7 +8,7 @@ from .thesis import TABLE_OF, THESIS_HARDWARE
 FIGURE_RANGE = {"env1": "Figures 4.2-4.4", "env2": "Figures 4.6-4.9", "env3": "Figures 4.11-4.13"}
 STATUS_TEXT = {
     "missing": "no folder: this environment was not run",
-    "empty": "folder without frames.csv or tables.csv: no results",
+    "empty": "no measured frames (no frames.csv or tables.csv, or only their headers)",
     "incomplete": "no frames.csv: the run was interrupted or is still going; no results yet",
 }
 
@@ -42,8 +42,8 @@ def _summary(sections):
         frames = len(run.frames) if run.frames else sum(c.frames for c in run.cells)
         out.append(f"- **{run.name}**: {len(run.strategies)} strategies ({', '.join(run.strategies)}), "
                    f"{lay.axis} {', '.join(map(str, lay.columns))} at {lay.describe_fixed()}, {frames} frames; "
-                   f"{len(s['findings'].agrees)} finding(s) agree with the thesis, "
-                   f"{len(s['findings'].differs)} differ.")
+                   + (f"{len(s['findings'].agrees)} finding(s) agree with the thesis, "
+                      f"{len(s['findings'].differs)} differ." if s["comparison"].table else "not in the thesis."))
     out.append("- " + _correctness_sentence(sections))
     out.append("")
     return out
@@ -114,7 +114,8 @@ def _environment(s):
     cmp = s["comparison"]
     name = cmp.table if cmp and cmp.table else TABLE_OF.get(run.name)
     table = f"Table {name}, " if name else ""
-    out = [f"## {run.name} ({table}{FIGURE_RANGE.get(run.name, 'figures')})", ""]
+    heading = f"{table}{FIGURE_RANGE[run.name]}" if run.name in FIGURE_RANGE else "not in the thesis"
+    out = [f"## {run.name} ({heading})", ""]
     if run.status != "ok":
         out += [f"Not reported: {STATUS_TEXT[run.status]}.", ""]
         return out
@@ -127,7 +128,7 @@ def _environment(s):
     if run.notes or cmp.layout.other_fixed_values:
         out.append("")
     out += ["### Tables", "", f"Also in `{run.name}/comparison.md` and `{run.name}/comparison.csv`. "
-            f"Cells: this run (thesis); blank = not measured.", ""]
+            + ("Cells: this run (thesis); blank = not measured." if cmp.table else "Blank = not measured."), ""]
     out.append(comparison_markdown(cmp, level=4))
     out += ["### Figures", ""]
     for fig in s["figures"]:

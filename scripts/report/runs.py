@@ -95,6 +95,11 @@ def read_environment(result_dir: Path, name: str) -> EnvironmentRun:
         return run
     if not run.meta:
         run.notes.append("meta.json is missing: machine, GL renderer and commit unknown")
+    planned = run.meta.get("config", {}).get("strategies")
+    if isinstance(planned, list):
+        absent = [str(p) for p in planned if p not in {c.strategy for c in run.cells}]
+        if absent:
+            run.notes.append(f"planned in meta.json but without results: {', '.join(absent)}")
     environments = sorted({r["environment"] for r in run.frames}) if run.frames else []
     run.environment = environments[0] if environments else name
     if len(environments) > 1:
