@@ -30,6 +30,12 @@ inline constexpr IntLimits kMaxContactsPerPair{1, 256};
 inline constexpr IntLimits kTorusSegments{3, 1024};
 inline constexpr IntLimits kPlaneCells{1, 1024};
 inline constexpr IntLimits kLeafTriangles{1, 1024};
+// Triangles of one asset mesh (mesh.max_triangles). The default, about 170 times the thesis'
+// dragon, holds every common scan up to the 7.2 M-triangle XYZ RGB dragon; beyond it the loader,
+// the hierarchies and the GL buffers need gigabytes. The maximum keeps three vertices per triangle
+// below 2^31, as GL draw offsets are 32-bit.
+inline constexpr long long kDefaultMeshTriangles = 8'000'000;
+inline constexpr IntLimits kMeshTriangles{1, 500'000'000};
 
 // Seconds; ODE is unstable long before one second per step.
 inline constexpr NumberLimits kTimeStep{0.0, 1.0, true};

@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <numbers>
 #include <set>
 #include <sstream>
 
 #include "core/Errors.h"
 #include "scenes/ConfigNode.h"
+#include "scenes/PlacementCapacity.h"
 
 namespace cdb {
 namespace {
@@ -51,28 +51,16 @@ MeshSpec readMesh(const ConfigNode& node) {
     if (auto n = node["plane_cells"]; n.present()) mesh.planeCells = int(n.integer(L::kPlaneCells));
   } else if (k == "asset") {
     mesh.kind = MeshSpec::Kind::Asset;
-    node.expectKeys({"kind", "asset", "asset_size"});
+    node.expectKeys({"kind", "asset", "asset_size", "max_triangles"});
     node["asset"].require("an asset file stem like dragon_vrip_res3");
     mesh.asset = node["asset"].string();
     if (auto n = node["asset_size"]; n.present()) mesh.assetSize = n.number(L::kLength);
+    if (auto n = node["max_triangles"]; n.present())
+      mesh.maxTriangles = n.integer(L::kMeshTriangles);
   } else {
     kind.fail("torus, plane or asset");
   }
   return mesh;
-}
-
-// Radius of a sphere about the local origin that holds the whole mesh. Assets are normalised to a
-// longest side of assetSize, so half the diagonal of that cube bounds them whatever their shape.
-double boundingRadius(const MeshSpec& mesh) {
-  switch (mesh.kind) {
-    case MeshSpec::Kind::Torus:
-      return mesh.majorRadius + mesh.minorRadius;
-    case MeshSpec::Kind::Plane:
-      return mesh.planeSize * std::numbers::sqrt2 / 2;
-    case MeshSpec::Kind::Asset:
-      return mesh.assetSize * std::numbers::sqrt3 / 2;
-  }
-  return 0;
 }
 
 CollisionProxy readCollision(const ConfigNode& node) {
@@ -241,15 +229,12 @@ void checkPlacement(const BodyGroup& body, int largestCount, const DynamicsSpec&
       }
     }
   }
-  const double rr = r + p.minGap / 2;
-  double volume = 1;
-  for (int i = 0; i < 3; ++i) volume *= p.regionMax[i] - p.regionMin[i] + 2 * rr;
-  const double filled = largestCount * 4.0 / 3.0 * std::numbers::pi * rr * rr * rr;
-  if (filled > L::kMaxPlacementFill * volume) {
+  const double fill = placementFill(body, largestCount);
+  if (fill > L::kMaxPlacementFill) {
     std::ostringstream expected, got;
     expected << "a region where " << largestCount << " bodies of bounding radius " << r
              << " fill at most " << L::kMaxPlacementFill * 100 << "% (random placement jams)";
-    got << int(std::lround(100 * filled / volume)) << "%";
+    got << std::llround(100 * fill) << "%";
     node["placement"].fail(expected.str(), got.str());
   }
 }
@@ -319,9 +304,13 @@ ScenarioConfig loadScenarioConfig(const std::filesystem::path& file) {
   }
   std::stringstream text;
   text << in.rdbuf();
+  return loadScenarioConfigFromText(text.str(), name);
+}
+
+ScenarioConfig loadScenarioConfigFromText(std::string_view text, const std::string& name) {
   YAML::Node document;
   try {
-    document = YAML::Load(text.str());
+    document = YAML::Load(std::string(text));
   } catch (const YAML::Exception& e) {
     throw InputError(fileLine(name, e.mark.line + 1) + ": expected valid YAML, got " + e.msg +
                      " (column " + std::to_string(e.mark.column + 1) + ")");

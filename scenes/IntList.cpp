@@ -1,6 +1,7 @@
 #include "scenes/IntList.h"
 
 #include <charconv>
+#include <limits>
 #include <string>
 
 #include "core/Errors.h"
@@ -35,6 +36,12 @@ int parseInt(std::string_view text, std::string_view item) {
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
   int value = 0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (ec == std::errc::result_out_of_range && end == digits.data() + digits.size()) {
+    fail(text,
+         "an integer in [" + std::to_string(std::numeric_limits<int>::min()) + ", " +
+             std::to_string(std::numeric_limits<int>::max()) + "]",
+         quoted(s));
+  }
   if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size()) {
     fail(text, "an integer", quoted(s));
   }

@@ -134,23 +134,40 @@ void checkFinite(const aiScene& scene, const std::string& file) {
   }
 }
 
-}  // namespace
+// Triangles the merge would keep at most: every face of every mesh each node instantiates.
+// Saturates rather than wraps, so a hostile file cannot count itself small.
+unsigned long long facesInScene(const aiScene& scene, const aiNode& node, int depth) {
+  constexpr auto kMany = std::numeric_limits<unsigned long long>::max();
+  // assimp builds a tree, but a hostile file must not recurse without end.
+  if (depth > 1000) return kMany;
+  unsigned long long n = 0;
+  const auto add = [&](unsigned long long k) { n = k > kMany - n ? kMany : n + k; };
+  for (unsigned m = 0; m < node.mNumMeshes; ++m) add(scene.mMeshes[node.mMeshes[m]]->mNumFaces);
+  for (unsigned c = 0; c < node.mNumChildren; ++c)
+    add(facesInScene(scene, *node.mChildren[c], depth + 1));
+  return n;
+}
 
-LoadedMesh loadMesh(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::error_code ec;
-  // assimp calls an empty file "too small" or "empty" depending on the format; say what it means.
-  if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 &&
-      !ec) {
-    throw InputError(name + ": mesh has no triangles (the file is empty)");
-  }
-  Assimp::Importer importer;
-  const aiScene* scene =
-      importer.ReadFile(name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+unsigned long long facesInScene(const aiScene& scene) {
+  if (scene.mRootNode != nullptr) return facesInScene(scene, *scene.mRootNode, 0);
+  unsigned long long n = 0;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) n += scene.mMeshes[m]->mNumFaces;
+  return n;
+}
+
+// Everything after assimp has parsed the file: checks, merge, messages that name `name`.
+LoadedMesh fromScene(const aiScene* scene, const Assimp::Importer& importer,
+                     const std::string& name, const MeshLoadOptions& options) {
   if (scene == nullptr) {
     throw InputError(name + ": cannot load mesh: " + importer.GetErrorString());
   }
   checkFinite(*scene, name);
+  const unsigned long long faces = facesInScene(*scene);
+  if (faces > static_cast<unsigned long long>(options.maxTriangles)) {
+    throw InputError(name + ": expected at most " + std::to_string(options.maxTriangles) +
+                     " triangles (mesh.max_triangles), got " + std::to_string(faces) +
+                     ": simplify the mesh or raise max_triangles");
+  }
 
   MeshMerger merger(*scene, name);
   if (scene->mRootNode != nullptr) {
@@ -160,19 +177,98 @@ LoadedMesh loadMesh(const std::filesystem::path& file) {
       merger.addMesh(*scene->mMeshes[m], aiMatrix4x4());
   }
   LoadedMesh loaded = std::move(merger).finish();
-  loaded.mesh.name = file.stem().string();
 
   if (loaded.mesh.triangles.empty()) {
     throw InputError(
         name + ": mesh has no triangles" +
         (loaded.dropped.degenerateTriangles
              ? " (all " + std::to_string(loaded.dropped.degenerateTriangles) + " are degenerate)"
+         : loaded.dropped.nonTriangleFaces
+             ? " (only " + std::to_string(loaded.dropped.nonTriangleFaces) + " points and lines)"
              : std::string()));
   }
   if (loaded.dropped.degenerateTriangles > 0) {
     std::cerr << "warning: " << name << ": dropped " << loaded.dropped.degenerateTriangles
               << " degenerate triangle(s) (repeated vertex or zero area)\n";
   }
+  return loaded;
+}
+
+// assimp's triangulation trusts what the importer produced: a face without indices, or a mesh
+// whose primitive types claim polygons none of its faces is, makes it assert and abort the
+// process, and an index past the vertices makes it read past them. A broken file can produce all
+// three, and assimp's own validation lets the first through, so the faces are checked here and the
+// types recomputed from them before any post-processing runs.
+void checkFaces(const aiScene& scene, const std::string& file) {
+  if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr)
+    throw InputError(file + ": cannot load mesh: the importer returned no mesh data");
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    aiMesh* mesh = scene.mMeshes[m];
+    if (mesh == nullptr || (mesh->mNumFaces > 0 && mesh->mFaces == nullptr) ||
+        (mesh->mNumVertices > 0 && mesh->mVertices == nullptr)) {
+      throw InputError(file + ": cannot load mesh: the importer returned mesh " +
+                       std::to_string(m) + " without its data");
+    }
+    unsigned types = 0;
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices == 0 || face.mIndices == nullptr) {
+        throw InputError(file + ": face " + std::to_string(f) + " of mesh " + std::to_string(m) +
+                         ": expected at least one vertex index, got none");
+      }
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        if (face.mIndices[k] >= mesh->mNumVertices) {
+          throw InputError(file + ": face " + std::to_string(f) + " of mesh " + std::to_string(m) +
+                           ": expected vertex indices below " + std::to_string(mesh->mNumVertices) +
+                           ", got " + std::to_string(face.mIndices[k]));
+        }
+      }
+      const unsigned n = face.mNumIndices;
+      types |= n == 1   ? aiPrimitiveType_POINT
+               : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE
+                        : aiPrimitiveType_POLYGON;
+    }
+    mesh->mPrimitiveTypes = types;
+  }
+}
+
+// The importer's scene, checked, then triangulated. MeshMerger joins vertices by position itself,
+// so assimp's own joining (which also compares normals and texture coordinates) is left out: it
+// would only cost time, six times the parse on a large PLY.
+const aiScene* triangulated(Assimp::Importer& importer, const aiScene* read,
+                            const std::string& file) {
+  if (read == nullptr) return nullptr;
+  checkFaces(*read, file);
+  return importer.ApplyPostProcessing(aiProcess_Triangulate);
+}
+
+}  // namespace
+
+LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& options) {
+  const std::string name = file.string();
+  std::error_code ec;
+  // assimp calls an empty file "too small" or "empty" depending on the format; say what it means.
+  if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 &&
+      !ec) {
+    throw InputError(name + ": mesh has no triangles (the file is empty)");
+  }
+  Assimp::Importer importer;
+  const aiScene* scene = triangulated(importer, importer.ReadFile(name, 0), name);
+  LoadedMesh loaded = fromScene(scene, importer, name, options);
+  loaded.mesh.name = file.stem().string();
+  return loaded;
+}
+
+LoadedMesh loadMeshFromMemory(std::span<const std::byte> bytes, std::string_view formatHint,
+                              const std::string& name, const MeshLoadOptions& options) {
+  if (bytes.empty()) throw InputError(name + ": mesh has no triangles (the file is empty)");
+  Assimp::Importer importer;
+  const std::string hint(formatHint);
+  const aiScene* scene = triangulated(
+      importer, importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str()), name);
+  LoadedMesh loaded = fromScene(scene, importer, name, options);
+  loaded.mesh.name = std::filesystem::path(name).stem().string();
   return loaded;
 }
 

@@ -3,7 +3,11 @@
 // one Mesh, checked, and normalised to a chosen size.
 #include <cstddef>
 #include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
 
+#include "scenes/ConfigLimits.h"
 #include "scenes/Mesh.h"
 
 namespace cdb {
@@ -20,11 +24,24 @@ struct LoadedMesh {
   DroppedGeometry dropped;
 };
 
+struct MeshLoadOptions {
+  // A file with more triangles is refused before they are merged (mesh.max_triangles).
+  long long maxTriangles = limits::kDefaultMeshTriangles;
+};
+
 // Reads `file`, triangulates, merges every mesh of the file (with its node transform) into one,
 // joins vertices at identical positions and drops vertices no triangle uses. Degenerate triangles
 // are dropped with one warning line on stderr. Throws InputError naming the file when assimp cannot
-// read it, when a coordinate is NaN or infinite, or when no triangle is left.
-[[nodiscard]] LoadedMesh loadMesh(const std::filesystem::path& file);
+// read it, when a coordinate is NaN or infinite, when it has more than options.maxTriangles
+// triangles, or when no triangle is left.
+[[nodiscard]] LoadedMesh loadMesh(const std::filesystem::path& file,
+                                  const MeshLoadOptions& options = {});
+
+// The same from bytes already in memory; `formatHint` is the file extension without the dot
+// ("ply", "obj") and `name` names the mesh in messages.
+[[nodiscard]] LoadedMesh loadMeshFromMemory(std::span<const std::byte> bytes,
+                                            std::string_view formatHint, const std::string& name,
+                                            const MeshLoadOptions& options = {});
 
 // Moves the bounding-box centre to the origin and scales uniformly so that the longest side of
 // the bounding box is `longestSide`. Throws InputError for an empty or flat-to-a-point mesh.

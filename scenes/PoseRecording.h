@@ -43,5 +43,8 @@ struct PoseRecording {
 void writePoseRecording(const PoseRecording& recording, const std::filesystem::path& file);
 // Throws InputError naming the file and what is wrong (not a recording, truncated, bad version).
 [[nodiscard]] PoseRecording readPoseRecording(const std::filesystem::path& file);
+// The same from the bytes of a recording already in memory; `name` stands for the file in messages.
+[[nodiscard]] PoseRecording readPoseRecordingFromBytes(std::span<const char> bytes,
+                                                       const std::string& name);
 
 }  // namespace cdb

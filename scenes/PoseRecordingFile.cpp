@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +16,7 @@
 #include <unistd.h>
 
 #include "core/Errors.h"
+#include "scenes/DynamicsModel.h"
 #include "scenes/PoseRecording.h"
 
 namespace cdb {
@@ -27,6 +29,11 @@ constexpr std::size_t kDoublesPerPose = 7;  // translation x y z, rotation w x y
 constexpr std::size_t kBytesPerPose = kDoublesPerPose * 8;
 // Far above any real name; a larger value means the header is garbage.
 constexpr std::uint32_t kMaxEnvironmentLength = 4096;
+// ODE renormalises every step, so a recorded rotation is a unit quaternion to a few ulps.
+constexpr double kUnitTolerance = 1e-6;
+// The simulation stops when a body's centre of mass leaves this distance; a pose places the mesh's
+// origin, which lies within the mesh's size of it, hence the margin.
+constexpr double kMaxDistance = 2 * dynamics_model::kMaxDistanceFromOrigin;
 
 class ByteWriter {
  public:
@@ -45,7 +52,7 @@ class ByteWriter {
 
 class ByteReader {
  public:
-  explicit ByteReader(const std::vector<char>& in) : in_(in) {}
+  explicit ByteReader(std::span<const char> in) : in_(in) {}
   [[nodiscard]] std::size_t remaining() const { return in_.size() - at_; }
   [[nodiscard]] bool has(std::size_t n) const { return remaining() >= n; }
   [[nodiscard]] std::string bytes(std::size_t n) {
@@ -64,7 +71,7 @@ class ByteReader {
     at_ += std::size_t(n);
     return v;
   }
-  const std::vector<char>& in_;
+  std::span<const char> in_;
   std::size_t at_ = 0;
 };
 
@@ -148,7 +155,11 @@ PoseRecording readPoseRecording(const std::filesystem::path& file) {
   if (!in) failRead(file, std::string("cannot open pose recording: ") + std::strerror(errno));
   const std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) failRead(file, "cannot read pose recording");
+  return readPoseRecordingFromBytes(data, file.string());
+}
 
+PoseRecording readPoseRecordingFromBytes(std::span<const char> data, const std::string& name) {
+  const std::filesystem::path file = name;
   ByteReader r(data);
   if (!r.has(kMagic.size()) || r.bytes(kMagic.size()) != kMagic) {
     failRead(file, "not a pose recording (it does not start with " + std::string(kMagic) + ")");
@@ -205,6 +216,21 @@ PoseRecording readPoseRecording(const std::filesystem::path& file) {
     Pose& pose = recording.poses[i];
     pose.translation = Eigen::Vector3d(v[0], v[1], v[2]);
     pose.rotation = Eigen::Quaterniond(v[3], v[4], v[5], v[6]);
+    // The simulation never records these (it stops on an unstable body, and ODE keeps its
+    // quaternions normalised); a file that holds them would feed nonsense geometry to the GL.
+    const auto where = [&] {
+      return "frame " + std::to_string(i / recording.objectCount) + " object " +
+             std::to_string(i % recording.objectCount);
+    };
+    if (pose.translation.norm() > kMaxDistance) {
+      failRead(file, where() + ": expected a position within " + std::to_string(kMaxDistance) +
+                         " of the origin, got one " + std::to_string(pose.translation.norm()) +
+                         " away");
+    }
+    if (std::abs(pose.rotation.norm() - 1.0) > kUnitTolerance) {
+      failRead(file, where() + ": expected a unit quaternion, got one of norm " +
+                         std::to_string(pose.rotation.norm()));
+    }
   }
   if (recording.hash() != storedHash) {
     failRead(file, "pose data does not match the checksum in its header (corrupted file)");

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "scenes/ConfigLimits.h"
+
 namespace cdb {
 
 using Vec3 = std::array<double, 3>;
@@ -28,6 +30,7 @@ struct MeshSpec {
   // of its bounding box is `assetSize` and centred on its bounding-box centre.
   std::string asset;
   double assetSize = 1.0;
+  long long maxTriangles = limits::kDefaultMeshTriangles;  // a larger file is refused
 };
 
 // The shape ODE uses for contact response. Trimesh is exact; the proxies exist for meshes where

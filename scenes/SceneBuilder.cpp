@@ -1,11 +1,13 @@
 #include "scenes/SceneBuilder.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/Errors.h"
 #include "scenes/AssetPath.h"
 #include "scenes/ConfigLimits.h"
 #include "scenes/MeshLoader.h"
+#include "scenes/PlacementCapacity.h"
 #include "scenes/ProceduralMeshes.h"
 
 namespace cdb {
@@ -22,7 +24,7 @@ Mesh makeMesh(const BodyGroup& group, const std::vector<std::string>& assetDirs)
       mesh = makePlane(spec.planeSize, spec.planeCells);
       break;
     case MeshSpec::Kind::Asset:
-      mesh = loadMesh(resolveAsset(spec.asset, assetDirs)).mesh;
+      mesh = loadMesh(resolveAsset(spec.asset, assetDirs), {spec.maxTriangles}).mesh;
       normaliseMesh(mesh, spec.assetSize);
       break;
   }
@@ -69,6 +71,16 @@ ScenarioConfig withObjectCount(const ScenarioConfig& config, int count) {
   if (!it->poses.empty()) {
     throw InputError(config.sourcePath + ": sweep.counted_group: expected a group with random " +
                      "placement, got '" + group + "' with explicit poses");
+  }
+  // The loader checked the config's own counts; a count from the command line is checked here, so
+  // that it is refused as input rather than failing to place bodies after the run has begun.
+  if (const double fill = it->placement ? placementFill(*it, count) : 0.0;
+      fill > limits::kMaxPlacementFill) {
+    throw InputError(config.sourcePath + ": object count " + std::to_string(count) + " of '" +
+                     group + "': expected a count whose bounding spheres fill at most " +
+                     std::to_string(int(limits::kMaxPlacementFill * 100)) +
+                     "% of its placement region (random placement jams), got " +
+                     std::to_string(std::llround(100 * fill)) + "%");
   }
   it->count = count;
   return out;

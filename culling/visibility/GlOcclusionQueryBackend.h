@@ -39,6 +39,9 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   void resetCounters() override { counters_ = {}; }
 
   [[nodiscard]] const VisibilityOptions& options() const { return options_; }
+  // The largest frame-buffer side this GL renders at (GL_MAX_RENDERBUFFER_SIZE and
+  // GL_MAX_VIEWPORT_DIMS), so a run can refuse a resolution before it simulates anything.
+  [[nodiscard]] int maxResolution() const { return pipeline_.maxResolution(); }
   // The GL layer underneath (GlDrawFloor and tests read the depth buffer through it).
   [[nodiscard]] GlVisibilityPipeline& pipeline() { return pipeline_; }
 
