@@ -14,6 +14,7 @@ struct RunOptions {
   std::optional<std::vector<int>> resolutions;
   std::optional<std::vector<int>> objectCounts;
   std::optional<int> frames;
+  int frameStride = 1;  // measure frames 0, k, 2k, ... of each simulation (all are simulated)
   std::optional<int> repeats;
   std::optional<std::uint64_t> seed;
   std::optional<bool> conservative;  // --raw sets false

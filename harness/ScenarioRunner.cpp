@@ -14,6 +14,7 @@
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 #include "harness/AtomicFile.h"
+#include "harness/BackendWarmUp.h"
 #include "harness/CellStore.h"
 #include "harness/InterruptFlag.h"
 #include "harness/ProgressBar.h"
@@ -76,6 +77,9 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
       throw InputError("object count " + std::to_string(n) + ": expected 1..100000");
   if (config.dynamics.frames < 1) throw InputError("--frames: expected at least 1");
   if (config.sweep.repeats < 1) throw InputError("--repeats: expected at least 1");
+  if (options.frameStride < 1 || options.frameStride > config.dynamics.frames)
+    throw InputError("--frame-stride " + std::to_string(options.frameStride) + ": expected 1.." +
+                     std::to_string(config.dynamics.frames) + " (the frames simulated)");
   if (options.replayFile && (config.sweep.repeats != 1 || config.sweep.objectCounts.size() > 1))
     throw InputError("--replay: expected a single repeat and object count (the recording's)");
   return config;
@@ -94,6 +98,7 @@ std::uint64_t identityHash(const ScenarioConfig& config, const RunOptions& optio
   h.f64(config.culling.rawDepthOffset);
   h.byte(options.groundTruth ? 1 : 0);
   h.text(options.replayFile ? options.replayFile->string() : std::string());
+  h.i64(options.frameStride);
   return h.value();
 }
 
@@ -164,7 +169,10 @@ RunSummary runScenario(const RunOptions& options) {
   strategyOptions.culling = config.culling;
 
   installInterruptHandlers();
-  ProgressBar progress(todo.size(), static_cast<std::size_t>(config.dynamics.frames), !options.quiet);
+  ProgressBar progress(todo.size(),
+                       static_cast<std::size_t>((config.dynamics.frames + options.frameStride - 1) /
+                                                options.frameStride),
+                       !options.quiet);
 
   std::optional<int> sceneCount;
   std::optional<ScenarioConfig> cfg;
@@ -175,6 +183,8 @@ RunSummary runScenario(const RunOptions& options) {
   std::vector<std::vector<ObjectPair>> truthPairs;
   const Cell* framesOf = nullptr;
   int objects = 0;
+  const auto stride = static_cast<std::uint32_t>(options.frameStride);
+  std::vector<std::uint32_t> measured;  // frame indices timed in every cell of this simulation
 
   for (const Cell& cell : todo) {
     if (!sceneCount || *sceneCount != cell.objectCount) {
@@ -193,10 +203,11 @@ RunSummary runScenario(const RunOptions& options) {
       framesOf = &cell;
       recording = framesFor(cell, *cfg, *scene, options, store);
       if (options.recordFile) writePoseRecording(recording, *options.recordFile);
+      measured.clear();
+      for (std::uint32_t f = 0; f < recording.frameCount(); f += stride) measured.push_back(f);
       truthPairs.assign(recording.frameCount(), {});
       if (truth)
-        for (std::uint32_t f = 0; f < recording.frameCount(); ++f)
-          truthPairs[f] = truth->compute(recording.frame(f)).collidingPairs;
+        for (std::uint32_t f : measured) truthPairs[f] = truth->compute(recording.frame(f)).collidingPairs;
     }
 
     progress.startCell(cfg->environment + " " + cell.strategy + " objects=" + std::to_string(objects) +
@@ -205,11 +216,11 @@ RunSummary runScenario(const RunOptions& options) {
     strategyOptions.resolution = cell.resolution;
     auto strategy = registry.create(cell.strategy, strategyOptions);
     strategy->attach(*scene, backend);
-    // Warm-up on the first frame: shader compilation and first-use costs are not CD time.
-    (void)strategy->cull({recording.frame(0), 0});
+    // Shader compilation and framebuffer allocation at this resolution are not CD time.
+    warmUpBackend(backend, *scene, recording.frame(0), cell.resolution);
 
     std::vector<FrameRecord> rows;
-    for (std::uint32_t f = 0; f < recording.frameCount(); ++f) {
+    for (std::uint32_t f : measured) {
       const auto poses = recording.frame(f);
       const auto t0 = Clock::now();
       CullingResult culled = strategy->cull({poses, static_cast<int>(f)});
@@ -288,6 +299,7 @@ RunSummary runScenario(const RunOptions& options) {
                     {"environment", config.environment},
                     {"seed", config.seed},
                     {"frames", config.dynamics.frames},
+                    {"frame_stride", options.frameStride},
                     {"repeats", config.sweep.repeats},
                     {"resolutions", config.sweep.resolutions},
                     {"object_counts", config.sweep.objectCounts},

@@ -54,6 +54,8 @@ int main(int argc, char** argv) {
   runCmd->add_option("--objects", objects, "object counts of the swept group: list or range");
   auto* framesOpt = runCmd->add_option("--frames", frames, "frames per simulation");
   auto* repeatsOpt = runCmd->add_option("--repeats", repeats, "independent simulations");
+  runCmd->add_option("--frame-stride", run.frameStride,
+                     "measure every k-th simulated frame (all frames are simulated)");
   auto* seedOpt = runCmd->add_option("--seed", seed, "base seed (repeat r uses seed + r)");
   runCmd->add_option("--out", run.outDir, "output folder")->capture_default_str();
   runCmd->add_option("--assets", run.assetDirs, "asset folder (repeatable), before $CDBENCH_ASSETS");

@@ -1,0 +1,34 @@
+#include "harness/BackendWarmUp.h"
+
+#include <vector>
+
+#include "core/Aabb.h"
+
+namespace cdb {
+
+void warmUpBackend(VisibilityBackend& backend, const SceneGeometry& scene,
+                   std::span<const Pose> poses, int resolution) {
+  if (scene.objectCount() == 0) return;
+  backend.setPoses(poses);
+  Aabb bounds;
+  for (ObjectId o = 0; o < scene.objectCount(); ++o)
+    bounds.extend(transformAabb(scene.meshOf(o).bounds(), poses[o]));
+  OrientedBox box;
+  box.halfExtents = scene.meshOf(0).bounds().sizes() * 0.5;
+  box.center = scene.meshOf(0).bounds().center();
+  const std::uint32_t triangles = static_cast<std::uint32_t>(scene.meshOf(0).triangleCount());
+  const std::vector<std::uint32_t> some = {0, triangles / 2};
+  std::vector<std::uint8_t> answers;
+  for (DepthUse use : {DepthUse::Fresh, DepthUse::SharedFirst, DepthUse::SharedSecond}) {
+    backend.beginPass({Eigen::Vector3d::UnitX(), bounds, resolution}, use);
+    (void)backend.queryRange({0, 0, triangles});
+    (void)backend.queryRange({0, 0, 1});
+    (void)backend.queryBox(0, box);
+    backend.writeRange({0, 0, triangles});
+    backend.writeTriangles(0, some);
+    backend.writeBox(0, box);
+  }
+  backend.fetchResults(answers);
+}
+
+}  // namespace cdb
