@@ -1,6 +1,9 @@
 #include "culling/StrategyRegistry.h"
 
 #include "core/Errors.h"
+#include "culling/peers/BulletPeer.h"
+#include "culling/peers/FclPeer.h"
+#include "culling/peers/OdePeer.h"
 #include "culling/strategies/CollisionIndependentSets.h"
 #include "culling/strategies/Cullide.h"
 #include "culling/strategies/DepthSortedCulling.h"
@@ -16,6 +19,12 @@ const StrategyRegistry& StrategyRegistry::builtin() {
           [](const StrategyOptions& o) { return std::make_unique<DepthSortedCulling>(o); });
     r.add("cis", "collision-independent sets along one view axis (thesis 3.3, Algorithm 3.2)",
           [](const StrategyOptions& o) { return std::make_unique<CollisionIndependentSets>(o); });
+    r.add("fcl", "CPU peer: FCL 0.7, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
+          [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); });
+    r.add("bullet", "CPU peer: Bullet 3.24 (double), btDbvtBroadphase, GImpact meshes, margin 0",
+          [](const StrategyOptions& o) { return std::make_unique<BulletPeer>(o); });
+    r.add("ode", "CPU peer: ODE 0.16, hash space, OPCODE trimesh-trimesh collider",
+          [](const StrategyOptions& o) { return std::make_unique<OdePeer>(o); });
     return r;
   }();
   return registry;
