@@ -191,7 +191,7 @@ def _per_frame_figure(cmp, slice_, name, strategies, heading):
     _maybe_log(ax, values, "CD time (ms)")
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))   # beside the plot: noisy lines fill it
     title = f"{cmp.run.name}: {heading}, {resolution}x{resolution} pixels, {objects} objects, repeat {repeat}"
     ax.set_title(title, fontsize=11)
     _caption(fig, cmp, False)
@@ -216,7 +216,8 @@ def _sets_figure(cmp, slice_, name, strategies):
             top = max(top, max(r["sets"] for r in rows))
     handles, labels = ax.get_legend_handles_labels()
     order = sorted(range(len(labels)), key=lambda i: strategies.index(labels[i]))
-    ax.legend([handles[i] for i in order], [labels[i] for i in order], fontsize=8)
+    ax.legend([handles[i] for i in order], [labels[i] for i in order], fontsize=8, loc="upper left",
+              bbox_to_anchor=(1.01, 1))
     ax.set_xlabel("Frame")
     ax.set_ylabel("Collision-independent sets")
     ax.set_ylim(0, top + 1)
