@@ -87,8 +87,12 @@ TEST_P(StrategyAgainstTruth, ConservativeModeLosesNoContact) {
     const auto expected = truth.compute(poses).collidingPairs;
     truthPairs += expected.size();
     const auto culled = strategy->cull({poses, static_cast<int>(f)});
-    const auto found = exact.run(poses, culled.sets).collidingPairs;
-    const auto cmp = compareWithTruth(expected, found, culled.sets, scene->scene.objectCount());
+    // As the runner does: a strategy that decides the pairs itself (a CPU peer) skips the exact
+    // phase, and having no sets, it misses in culling exactly the pairs it misses in the end.
+    const auto found = culled.decided ? culled.decided->collidingPairs
+                                      : exact.run(poses, culled.sets).collidingPairs;
+    auto cmp = compareWithTruth(expected, found, culled.sets, scene->scene.objectCount());
+    if (culled.decided) cmp.cullingMisses = cmp.falseNegatives;
     EXPECT_EQ(cmp.cullingMisses, 0u) << "frame " << f;
     EXPECT_EQ(cmp.falseNegatives, 0u) << "frame " << f;
     EXPECT_EQ(found, expected) << "frame " << f;

@@ -1,0 +1,94 @@
+// The CPU peers (FCL, Bullet, ODE) on their own: hand-built torus pairs whose answer is known, and
+// a random scene of 40 tori against the ground truth.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "RandomScenes.h"
+#include "culling/StrategyRegistry.h"
+#include "culling/exact/GroundTruth.h"
+#include "culling/visibility/ScriptedVisibilityOracle.h"
+#include "scenes/ProceduralMeshes.h"
+
+namespace cdb {
+namespace {
+
+const std::vector<std::string> kPeers = {"fcl", "bullet", "ode"};
+
+// Pairs a peer decides on each frame of `scene`.
+std::vector<std::vector<ObjectPair>> peerPairs(const std::string& peer,
+                                               const testing::RandomScene& scene) {
+  ScriptedVisibilityOracle unused([](const OracleCall&, std::span<const OracleCall>) {
+    ADD_FAILURE() << "a peer queried the visibility backend";
+    return true;
+  });
+  auto strategy = StrategyRegistry::builtin().create(peer, {});
+  strategy->attach(scene.scene, unused);
+  std::vector<std::vector<ObjectPair>> out;
+  for (std::size_t f = 0; f < scene.frames.size(); ++f) {
+    const CullingResult r = strategy->cull({scene.frames[f], int(f)});
+    EXPECT_TRUE(r.decided.has_value()) << peer;
+    EXPECT_TRUE(r.sets.empty()) << peer;
+    out.push_back(r.decided ? r.decided->collidingPairs : std::vector<ObjectPair>{});
+  }
+  return out;
+}
+
+// Two tori of major radius 0.5 and minor radius 0.2 (axis y), the first at the identity.
+testing::RandomScene torusPair(const Pose& second) {
+  testing::RandomScene s;
+  s.scene.meshes.push_back(makeTorus(0.5, 0.2, 20, 20));
+  s.scene.objects = {{0, false, "torus"}, {0, false, "torus"}};
+  s.frames.push_back({Pose{}, second});
+  return s;
+}
+
+// The second torus turned a quarter about x (axis z) and moved by `dx` along x.
+Pose quarterTurned(double dx) {
+  Pose p;
+  p.rotation = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX());
+  p.translation = {dx, 0, 0};
+  return p;
+}
+
+class PeerTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PeerTest, InterpenetratingToriCollide) {
+  Pose side;  // same plane, centres 0.6 apart: the tubes cross deeply
+  side.translation = {0.6, 0, 0};
+  const std::vector<ObjectPair> both = {{0, 1}};
+  EXPECT_EQ(peerPairs(GetParam(), torusPair(side))[0], both);
+  // Linked like chain links but 0.2 off centre: the tubes cross, 0.1 deep.
+  EXPECT_EQ(peerPairs(GetParam(), torusPair(quarterTurned(0.3)))[0], both);
+}
+
+TEST_P(PeerTest, ToriApartDoNotCollide) {
+  Pose side;  // same plane, outer rims 0.1 apart
+  side.translation = {1.5, 0, 0};
+  EXPECT_TRUE(peerPairs(GetParam(), torusPair(side))[0].empty());
+  // Linked like chain links: the tube axes stay 0.5 apart everywhere, so the tubes (0.2 each)
+  // are 0.1 apart everywhere while the bounding boxes overlap. A rotation applied wrongly would
+  // make them cross.
+  EXPECT_TRUE(peerPairs(GetParam(), torusPair(quarterTurned(0.5)))[0].empty());
+}
+
+TEST_P(PeerTest, RandomToriAgreeWithGroundTruth) {
+  const auto scene = testing::randomTori(40, 1.2, 4, 21);
+  GroundTruth truth(scene.scene);
+  const auto found = peerPairs(GetParam(), scene);
+  std::size_t truthPairs = 0;
+  for (std::size_t f = 0; f < scene.frames.size(); ++f) {
+    const auto expected = truth.compute(scene.frames[f]).collidingPairs;
+    truthPairs += expected.size();
+    EXPECT_EQ(found[f], expected) << GetParam() << " frame " << f;
+  }
+  EXPECT_GT(truthPairs, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Peers, PeerTest, ::testing::ValuesIn(kPeers),
+                         [](const auto& param) { return param.param; });
+
+}  // namespace
+}  // namespace cdb
