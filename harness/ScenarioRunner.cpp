@@ -307,13 +307,16 @@ RunSummary runScenario(const RunOptions& options) {
                     {"conservative", config.culling.conservative},
                     {"ground_truth", options.groundTruth},
                     {"text", configText}};
-  std::uint64_t fn = 0, fp = 0;
+  std::uint64_t fn = 0, fp = 0, truthPairsTotal = 0;
   for (const auto& r : rows) {
     fn += r.falseNegatives;
     fp += r.falsePositives;
+    truthPairsTotal += r.truthPairs;
   }
-  meta["summary"] = {{"frame_rows", rows.size()}, {"cells", plan.size()},
-                     {"false_negatives", fn}, {"false_positives", fp}};
+  meta["commit"] = meta["machine"]["git_commit"];
+  meta["summary"] = {{"frame_rows", rows.size()}, {"cells", plan.size()}, {"complete", true},
+                     {"truth_pairs", truthPairsTotal}, {"false_negatives", fn},
+                     {"false_positives", fp}};
   writeRunOutputs(options.outDir, rows, meta);
   summary.frameRows = rows.size();
   summary.complete = true;

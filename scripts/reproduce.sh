@@ -52,5 +52,5 @@ for env in env1 env2 env3; do
   build/cdbench run "configs/$env.yaml" --strategies "$strategies" ${extra[@]+"${extra[@]}"} \
     --out "$out/$env"
 done
-python3 scripts/report.py "$out"
+scripts/report.py "$out"
 echo "reproduce: $profile done in $(( $(date +%s) - start )) s: $out/REPORT.md" >&2
