@@ -60,6 +60,18 @@ std::uint64_t SortedIntervals::update(std::span<const ObjectId> objects, const W
     const auto [lo, hi] = projectAabb(bounds[e.object], direction);
     e.value = e.isMax ? hi : lo;
   }
+  return resort();
+}
+
+std::uint64_t SortedIntervals::update(std::span<const ObjectId> objects,
+                                      std::span<const std::pair<double, double>> intervals) {
+  rebuilt_ = !std::ranges::equal(objects, objects_);
+  if (rebuilt_) rebuild(objects);
+  for (auto& e : list_) e.value = e.isMax ? intervals[e.slot].second : intervals[e.slot].first;
+  return resort();
+}
+
+std::uint64_t SortedIntervals::resort() {
   std::uint64_t exchanges = 0;
   if (rebuilt_)
     std::sort(list_.begin(), list_.end(), before);  // no previous order to be coherent with

@@ -5,6 +5,7 @@
 // (temporal coherence, [CLMP95]).
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -28,6 +29,10 @@ class SortedIntervals {
   // otherwise the list is rebuilt from scratch. Returns the number of exchanges.
   std::uint64_t update(std::span<const ObjectId> objects, const WorldBounds& bounds,
                        const Eigen::Vector3d& direction);
+  // The same with the intervals given: intervals[slot] is [Min, Max] of objects[slot] along the
+  // direction (for geometry other than whole objects, e.g. the active nodes of a hierarchy).
+  std::uint64_t update(std::span<const ObjectId> objects,
+                       std::span<const std::pair<double, double>> intervals);
 
   // Ascending along the direction: for a view looking along it, near to far. At equal values a
   // MIN comes before a MAX, so touching intervals count as overlapping.
@@ -43,6 +48,7 @@ class SortedIntervals {
 
  private:
   void rebuild(std::span<const ObjectId> objects);
+  std::uint64_t resort();
   std::uint64_t insertionSort();
   void indexPositions();
 

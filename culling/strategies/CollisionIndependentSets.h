@@ -1,13 +1,14 @@
 #pragma once
 // Collision-independent sets along one view direction (thesis 3.3, Algorithm 3.2), object level:
 // the potentially colliding objects are partitioned into sets such that no two objects of
-// different sets can collide. See CollisionIndependentSets.cpp for the two passes and why the
-// partition is safe.
+// different sets can collide. CisConstruction holds the algorithm's decisions and why the
+// partition is safe; this draws whole objects for it.
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
+#include "culling/CisConstruction.h"
 #include "culling/CullingStrategy.h"
 #include "culling/SortedIntervals.h"
 #include "culling/StrategyRegistry.h"
@@ -48,14 +49,16 @@ class CollisionIndependentSets final : public CullingStrategy {
   [[nodiscard]] int chooseAxis() const;
 
   StrategyOptions options_;
-  CisOptions cis_;
+  CisOptions config_;
   const SceneGeometry* scene_ = nullptr;
   VisibilityBackend* backend_ = nullptr;
   WorldBounds bounds_;
   std::vector<ObjectId> allObjects_;
   std::array<SortedIntervals, 3> sorted_;  // one list per axis, kept across frames
   FrameStats stats_;
+  CisConstruction cis_;
   std::vector<std::uint8_t> visible_;  // query answers, reused across frames
+  std::vector<std::uint8_t> bySlot_;   // the same per slot of the sorted list
 };
 
 }  // namespace cdb
