@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "culling/PotentiallyCollidingSets.h"
 #include "culling/exact/ObjectPair.h"
@@ -18,11 +19,21 @@
 
 namespace cdb {
 
+// One level of a coarse-to-fine traversal of the objects' bounding-volume hierarchies.
+struct LevelCounters {
+  std::uint32_t level = 0;         // depth in the hierarchies (0 = the roots)
+  std::uint64_t nodesTested = 0;   // active nodes entering the level's visibility tests
+  std::uint64_t nodesKept = 0;     // active nodes left after them
+  std::uint64_t sets = 0;          // potentially colliding sets left after them
+  std::uint64_t queries = 0;       // occlusion queries the level issued
+};
+
 struct CullingCounters {
   VisibilityCounters visibility;
   std::uint64_t pcsSize = 0;   // objects left in some set after culling
   std::uint64_t sets = 0;      // number of potentially colliding (collision-independent) sets
   std::uint64_t pcsTriangles = 0;  // triangles left for the exact phase
+  std::vector<LevelCounters> levels;  // strategies with a hierarchy: one entry per level
 };
 
 struct CullingResult {
