@@ -1,0 +1,105 @@
+#include "culling/bvh/NodeFrontier.h"
+
+#include <algorithm>
+
+namespace cdb {
+
+void NodeFrontier::attach(const SceneGeometry& scene, const SceneHierarchies& hierarchies) {
+  scene_ = &scene;
+  hierarchies_ = &hierarchies;
+  active_.assign(scene.objectCount(), {});
+  reset();
+}
+
+void NodeFrontier::reset() {
+  for (auto& nodes : active_) nodes.assign(1, 0u);
+}
+
+bool NodeFrontier::allLeaves(ObjectId object) const {
+  const auto& all = tree(object).nodes();
+  return std::ranges::all_of(active_[object], [&](std::uint32_t n) { return all[n].leaf(); });
+}
+
+std::size_t NodeFrontier::retain(ObjectId object, std::span<const std::uint8_t> keep) {
+  auto& nodes = active_[object];
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    if (keep[k]) nodes[kept++] = nodes[k];
+  nodes.resize(kept);
+  return kept;
+}
+
+void NodeFrontier::expand(ObjectId object) {
+  const auto& all = tree(object).nodes();
+  scratch_.clear();
+  for (std::uint32_t n : active_[object]) {
+    const ObbTreeNode& node = all[n];
+    if (node.leaf()) {
+      scratch_.push_back(n);
+    } else {
+      for (std::uint32_t c = 0; c < node.childCount; ++c) scratch_.push_back(node.firstChild + c);
+    }
+  }
+  active_[object].swap(scratch_);
+}
+
+Aabb NodeFrontier::worldBounds(ObjectId object, const Pose& pose) const {
+  const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
+  Aabb result;
+  for (std::uint32_t n : active_[object]) {
+    const OrientedBox& b = box(object, n);
+    const Eigen::Vector3d c = pose.apply(b.center);
+    const Eigen::Vector3d h = (r * b.axes).cwiseAbs() * b.halfExtents;
+    result.extend(Aabb(c - h, c + h));
+  }
+  return result;
+}
+
+std::pair<double, double> NodeFrontier::nodeIntervals(
+    ObjectId object, const Pose& pose, const Eigen::Vector3d& direction,
+    std::vector<std::pair<double, double>>& out) const {
+  // The direction in the object's frame: one rotation per object instead of one per node.
+  const Eigen::Vector3d local = pose.rotation.conjugate() * direction;
+  const double offset = direction.dot(pose.translation);
+  double lo = 0;
+  double hi = 0;
+  bool first = true;
+  for (std::uint32_t n : active_[object]) {
+    const OrientedBox& b = box(object, n);
+    const double c = local.dot(b.center) + offset;
+    const double h = (b.axes.transpose() * local).cwiseAbs().dot(b.halfExtents);
+    out.emplace_back(c - h, c + h);
+    lo = first ? c - h : std::min(lo, c - h);
+    hi = first ? c + h : std::max(hi, c + h);
+    first = false;
+  }
+  return {lo, hi};
+}
+
+std::pair<double, double> NodeFrontier::interval(ObjectId object, const Pose& pose,
+                                                 const Eigen::Vector3d& direction) const {
+  std::vector<std::pair<double, double>> perNode;
+  return nodeIntervals(object, pose, direction, perNode);
+}
+
+std::size_t NodeFrontier::triangleCount(ObjectId object) const {
+  const auto& all = tree(object).nodes();
+  std::size_t count = 0;
+  for (std::uint32_t n : active_[object]) count += all[n].triangleCount;
+  return count;
+}
+
+SetMember NodeFrontier::member(ObjectId object) const {
+  SetMember m{object, {}};
+  // Active nodes never share a triangle (no node is an ancestor of another), so the counts add.
+  if (triangleCount(object) == scene_->meshOf(object).triangleCount()) return m;
+  const ObbTree& t = tree(object);
+  for (std::uint32_t n : active_[object]) {
+    const auto tris = t.triangles(t.nodes()[n]);
+    m.triangles.insert(m.triangles.end(), tris.begin(), tris.end());
+  }
+  std::ranges::sort(m.triangles);
+  return m;
+}
+
+}  // namespace cdb

@@ -1,0 +1,98 @@
+#include "culling/bvh/SceneHierarchies.h"
+
+#include <cstring>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+namespace cdb {
+
+namespace {
+
+// FNV-1a over raw bytes: a content fingerprint, not a security hash.
+std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t h) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= bytes[i];
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+// The counts ride along with the hash so that a hash collision would also need equal sizes.
+struct TreeKey {
+  std::uint64_t contentHash = 0;
+  std::size_t vertices = 0;
+  std::size_t triangles = 0;
+  int branching = 0;
+  int leafTriangles = 0;
+  double offset = 0;
+  bool optimized = false;
+
+  auto tie() const {
+    return std::tie(contentHash, vertices, triangles, branching, leafTriangles, offset, optimized);
+  }
+  bool operator<(const TreeKey& o) const { return tie() < o.tie(); }
+};
+
+TreeKey keyOf(const Mesh& mesh, const ObbTreeOptions& options) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  h = fnv1a(mesh.vertices.data(), mesh.vertices.size() * sizeof(mesh.vertices[0]), h);
+  h = fnv1a(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]), h);
+  return {h,
+          mesh.vertices.size(),
+          mesh.triangles.size(),
+          options.branching,
+          options.leafTriangles,
+          options.offset,
+          options.optimized};
+}
+
+struct TreeCache {
+  std::mutex mutex;
+  std::map<TreeKey, std::shared_ptr<const ObbTree>> trees;
+  std::uint64_t builds = 0;
+};
+
+TreeCache& cache() {
+  static TreeCache c;
+  return c;
+}
+
+}  // namespace
+
+ObbTreeOptions hierarchyOptions(const Mesh& mesh, const CullingSpec& spec) {
+  ObbTreeOptions options;
+  options.leafTriangles = spec.leafTriangles;
+  options.offset = spec.bvhOffset * mesh.bounds().diagonal().norm();
+  return options;
+}
+
+std::shared_ptr<const ObbTree> cachedObbTree(const Mesh& mesh, const ObbTreeOptions& options) {
+  const TreeKey key = keyOf(mesh, options);
+  TreeCache& c = cache();
+  // Held during the build: a second caller for the same mesh waits instead of building it again.
+  std::lock_guard lock(c.mutex);
+  auto& slot = c.trees[key];
+  if (!slot) {
+    slot = std::make_shared<const ObbTree>(ObbTree::build(mesh, options));
+    ++c.builds;
+  }
+  return slot;
+}
+
+std::uint64_t obbTreeBuilds() {
+  TreeCache& c = cache();
+  std::lock_guard lock(c.mutex);
+  return c.builds;
+}
+
+void SceneHierarchies::build(const SceneGeometry& scene, const CullingSpec& spec) {
+  trees_.clear();
+  for (const Mesh& mesh : scene.meshes)
+    trees_.push_back(cachedObbTree(mesh, hierarchyOptions(mesh, spec)));
+  objectMesh_.clear();
+  for (const SceneObject& object : scene.objects) objectMesh_.push_back(object.mesh);
+}
+
+}  // namespace cdb

@@ -1,0 +1,41 @@
+#pragma once
+// The OBB tree (thesis 3.4.1) of every mesh of a scene. Trees are built once per mesh content and
+// options and shared process-wide, because a sweep creates a strategy per cell (resolution,
+// repeat) on the same meshes, and the dragon's tree takes far longer to build than a frame.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "culling/bvh/ObbTree.h"
+#include "scenes/ScenarioConfig.h"
+#include "scenes/SceneGeometry.h"
+
+namespace cdb {
+
+// The tree options of a mesh under a config: leaf size as given, and the offset (a fraction of
+// the mesh's bounding-box diagonal in the config) as an absolute distance in mesh units.
+[[nodiscard]] ObbTreeOptions hierarchyOptions(const Mesh& mesh, const CullingSpec& spec);
+
+// The tree of `mesh` under `options`, built on the first request for that content (vertex and
+// triangle bytes) and options and returned from the cache afterwards. Thread-safe.
+[[nodiscard]] std::shared_ptr<const ObbTree> cachedObbTree(const Mesh& mesh,
+                                                           const ObbTreeOptions& options);
+
+// Trees built by cachedObbTree since the process started (cache misses), for tests.
+[[nodiscard]] std::uint64_t obbTreeBuilds();
+
+class SceneHierarchies {
+ public:
+  void build(const SceneGeometry& scene, const CullingSpec& spec);
+
+  [[nodiscard]] const ObbTree& ofMesh(std::uint32_t mesh) const { return *trees_[mesh]; }
+  [[nodiscard]] const ObbTree& ofObject(ObjectId object) const {
+    return *trees_[objectMesh_[object]];
+  }
+
+ private:
+  std::vector<std::shared_ptr<const ObbTree>> trees_;  // per mesh
+  std::vector<std::uint32_t> objectMesh_;              // per object
+};
+
+}  // namespace cdb
