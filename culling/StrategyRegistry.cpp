@@ -6,7 +6,9 @@
 #include "culling/peers/OdePeer.h"
 #include "culling/strategies/CollisionIndependentSets.h"
 #include "culling/strategies/Cullide.h"
+#include "culling/strategies/CullideWithHierarchy.h"
 #include "culling/strategies/DepthSortedCulling.h"
+#include "culling/strategies/HierarchicalCollisionIndependentSets.h"
 
 namespace cdb {
 
@@ -15,10 +17,16 @@ const StrategyRegistry& StrategyRegistry::builtin() {
     StrategyRegistry r;
     r.add("cullide", "CULLIDE without a hierarchy: object then triangle level, two passes, x y z",
           [](const StrategyOptions& o) { return std::make_unique<Cullide>(o); });
+    r.add("cullide_bvh", "CULLIDE's pruning coarse to fine over each object's 8-ary OBB tree",
+          [](const StrategyOptions& o) { return std::make_unique<CullideWithHierarchy>(o); });
     r.add("sorted", "CULLIDE's two passes in depth order, one depth clear (thesis 3.2)",
           [](const StrategyOptions& o) { return std::make_unique<DepthSortedCulling>(o); });
     r.add("cis", "collision-independent sets along one view axis (thesis 3.3, Algorithm 3.2)",
           [](const StrategyOptions& o) { return std::make_unique<CollisionIndependentSets>(o); });
+    r.add("ours", "thesis 3.4: OBB trees, sorting, collision-independent sets, an axis per level",
+          [](const StrategyOptions& o) {
+            return std::make_unique<HierarchicalCollisionIndependentSets>(o);
+          });
     r.add("fcl", "CPU peer: FCL 0.7, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
           [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); });
     r.add("bullet", "CPU peer: Bullet 3.24 (double), btDbvtBroadphase, GImpact meshes, margin 0",

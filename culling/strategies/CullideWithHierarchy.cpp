@@ -1,0 +1,96 @@
+#include "culling/strategies/CullideWithHierarchy.h"
+
+#include <algorithm>
+
+#include "culling/bvh/NodeDraws.h"
+
+namespace cdb {
+
+CullideWithHierarchy::CullideWithHierarchy(const StrategyOptions& options) : options_(options) {}
+
+void CullideWithHierarchy::attach(const SceneGeometry& scene, VisibilityBackend& backend) {
+  scene_ = &scene;
+  backend_ = &backend;
+  hierarchies_.build(scene, options_.culling);
+  frontier_.attach(scene, hierarchies_);
+}
+
+void CullideWithHierarchy::pruneAlong(std::vector<ObjectId>& objects, int axis,
+                                      std::span<const Pose> poses) {
+  if (objects.size() < 2) {
+    for (ObjectId o : objects) frontier_.clear(o);
+    objects.clear();
+    return;
+  }
+  Aabb bounds;
+  for (ObjectId o : objects) bounds.extend(frontier_.worldBounds(o, poses[o]));
+  const ViewSpec view{Eigen::Vector3d::Unit(axis), bounds, options_.resolution};
+
+  // Pass 1 tests each node against the objects drawn before its own, pass 2 (reverse order,
+  // fresh depth) against those after it; both passes are issued before the one fetch.
+  std::vector<QueryIndex> first1(objects.size());
+  std::vector<QueryIndex> first2(objects.size());
+  backend_->beginPass(view, DepthUse::Fresh);
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    first1[i] = queryNodes(*backend_, frontier_, objects[i]);
+    writeNodes(*backend_, frontier_, objects[i]);
+  }
+  backend_->beginPass(view, DepthUse::Fresh);
+  for (std::size_t i = objects.size(); i-- > 0;) {
+    first2[i] = queryNodes(*backend_, frontier_, objects[i]);
+    writeNodes(*backend_, frontier_, objects[i]);
+  }
+  backend_->fetchResults(visible_);
+
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const ObjectId o = objects[i];
+    const std::size_t count = frontier_.nodes(o).size();
+    keep_.resize(count);
+    for (std::size_t k = 0; k < count; ++k)
+      keep_[k] = !(visible_[first1[i] + k] && visible_[first2[i] + k]);
+    if (frontier_.retain(o, keep_) > 0) objects[kept++] = o;
+  }
+  objects.resize(kept);
+  if (objects.size() < 2) {  // an object alone collides with nothing
+    for (ObjectId o : objects) frontier_.clear(o);
+    objects.clear();
+  }
+}
+
+CullingResult CullideWithHierarchy::cull(const FrameInput& frame) {
+  const VisibilityCounters before = backend_->counters();
+  backend_->setPoses(frame.poses);
+  frontier_.reset();
+  CullingResult result;
+
+  std::vector<ObjectId> objects(scene_->objectCount());
+  for (std::size_t i = 0; i < objects.size(); ++i) objects[i] = static_cast<ObjectId>(i);
+  for (std::uint32_t level = 0; !objects.empty(); ++level) {
+    LevelCounters counters{.level = level};
+    const std::uint64_t queriesBefore = backend_->counters().queries;
+    for (ObjectId o : objects) counters.nodesTested += frontier_.nodes(o).size();
+    for (int axis = 0; axis < 3; ++axis) pruneAlong(objects, axis, frame.poses);
+    for (ObjectId o : objects) counters.nodesKept += frontier_.nodes(o).size();
+    counters.sets = objects.empty() ? 0 : 1;
+    counters.queries = backend_->counters().queries - queriesBefore;
+    result.counters.levels.push_back(counters);
+    if (std::ranges::all_of(objects, [&](ObjectId o) { return frontier_.allLeaves(o); })) break;
+    for (ObjectId o : objects) frontier_.expand(o);
+  }
+
+  if (!objects.empty()) {
+    PotentiallyCollidingSet set;
+    for (ObjectId o : objects) {
+      result.counters.pcsTriangles += frontier_.triangleCount(o);
+      set.members.push_back(frontier_.member(o));
+    }
+    result.counters.pcsSize = objects.size();
+    result.counters.sets = 1;
+    result.sets.push_back(std::move(set));
+  }
+  result.counters.visibility = backend_->counters() - before;
+  return result;
+}
+
+}  // namespace cdb

@@ -1,0 +1,244 @@
+#include "culling/strategies/HierarchicalCollisionIndependentSets.h"
+
+#include <algorithm>
+#include <limits>
+#include <tuple>
+
+// Where this departs from Algorithm 3.2 run per set, and why:
+//  - Pass 2 queries every object of the set (but the first drawn), not only those fully visible
+//    in pass 1. Nodes are pruned when fully visible in both passes, and the members of pass-1
+//    sets, the objects that may collide, are the ones whose nodes most need pruning; and since
+//    pass 2 then no longer depends on pass 1's answers, every set of a level is drawn before one
+//    fetch, instead of two synchronisations per set. The construction reads pass 2's answers
+//    only where Algorithm 3.2 would have tested.
+//  - A node is pruned when fully visible in both passes: pass 1 tests it against every object of
+//    farther Min in the set, pass 2 against every one of nearer Min, so it touches no other
+//    object of the set; objects outside the set cannot touch it (earlier levels' sets).
+// An object's nodes are all queried before any of them is written, so they never occlude each
+// other; the object is fully visible when all of them are.
+
+namespace cdb {
+
+namespace {
+constexpr QueryIndex kNotQueried = std::numeric_limits<QueryIndex>::max();
+}  // namespace
+
+bool HierarchicalCollisionIndependentSets::ListKey::operator<(const ListKey& o) const {
+  return std::tie(level, axis, objects) < std::tie(o.level, o.axis, o.objects);
+}
+
+HierarchicalCollisionIndependentSets::HierarchicalCollisionIndependentSets(
+    const StrategyOptions& options, HierarchicalCisOptions config)
+    : options_(options), config_(config) {}
+
+void HierarchicalCollisionIndependentSets::attach(const SceneGeometry& scene,
+                                                  VisibilityBackend& backend) {
+  scene_ = &scene;
+  backend_ = &backend;
+  hierarchies_.build(scene, options_.culling);
+  frontier_.attach(scene, hierarchies_);
+  lists_.clear();
+}
+
+int HierarchicalCollisionIndependentSets::chooseAxis(std::span<const Pose> poses) const {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sumSq = Eigen::Vector3d::Zero();
+  for (ObjectId o = 0; o < scene_->objectCount(); ++o) {
+    const Eigen::Vector3d c = poses[o].apply(frontier_.tree(o).nodes()[0].box.center);
+    sum += c;
+    sumSq += c.cwiseProduct(c);
+  }
+  const double n = static_cast<double>(scene_->objectCount());
+  const Eigen::Vector3d variance = sumSq / n - (sum / n).cwiseProduct(sum / n);
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (variance[k] > variance[axis]) axis = k;
+  return axis;
+}
+
+SortedIntervals& HierarchicalCollisionIndependentSets::listFor(
+    std::uint32_t level, int axis, const std::vector<ObjectId>& objects) {
+  KeptList& kept = lists_[ListKey{level, axis, objects}];
+  kept.lastFrame = frameCount_;
+  return kept.sorted;
+}
+
+void HierarchicalCollisionIndependentSets::drawSet(SetRun& run, std::uint32_t level, int axis,
+                                                   std::span<const Pose> poses) {
+  const Eigen::Vector3d direction = Eigen::Vector3d::Unit(axis);
+  const std::size_t n = run.objects.size();
+  intervals_.clear();
+  run.nodeIntervals.clear();
+  run.firstNode.clear();
+  Aabb bounds;
+  for (ObjectId o : run.objects) {
+    run.firstNode.push_back(static_cast<std::uint32_t>(run.nodeIntervals.size()));
+    intervals_.push_back(frontier_.nodeIntervals(o, poses[o], direction, run.nodeIntervals));
+    bounds.extend(frontier_.worldBounds(o, poses[o]));
+  }
+  run.firstNode.push_back(static_cast<std::uint32_t>(run.nodeIntervals.size()));
+  SortedIntervals& sorted = listFor(level, axis, run.objects);
+  stats_.sortExchanges += sorted.update(run.objects, intervals_);
+  ++(sorted.lastUpdateRebuilt() ? stats_.listsBuilt : stats_.listsKept);
+  run.cis.reset(sorted);
+
+  // Pass 1 far to near along +axis, pass 2 the reverse looking along -axis. In a pass's depth
+  // (the coordinate along its view), a node is queried only when its depth range overlaps that
+  // of some object drawn before it, and written only when it overlaps some object drawn after
+  // it: otherwise a plane across the view separates them (Lemma 1) and the answer is known. The
+  // first object drawn is thus never queried and the last never written (3.4.2).
+  const auto order = run.cis.passOneOrder();
+  auto depthOf = [](int pass, std::pair<double, double> iv) {
+    return pass == 0 ? iv : std::pair<double, double>{-iv.second, -iv.first};
+  };
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  ViewSpec view{direction, bounds, options_.resolution};
+  for (int pass = 0; pass < 2; ++pass) {
+    auto slotAt = [&](std::size_t k) { return order[pass == 0 ? k : n - 1 - k]; };
+    // Nearest near end and farthest far end of the objects drawn after position k.
+    laterNear_.assign(n, kInf);
+    laterFar_.assign(n, -kInf);
+    for (std::size_t k = n - 1; k-- > 0;) {
+      const auto d = depthOf(pass, intervals_[slotAt(k + 1)]);
+      laterNear_[k] = std::min(laterNear_[k + 1], d.first);
+      laterFar_[k] = std::max(laterFar_[k + 1], d.second);
+    }
+    backend_->beginPass(view, pass == 0 ? DepthUse::SharedFirst : DepthUse::SharedSecond);
+    run.query[pass].assign(run.nodeIntervals.size(), kNotQueried);
+    double earlierNear = kInf;
+    double earlierFar = -kInf;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t slot = slotAt(k);
+      const ObjectId o = run.objects[slot];
+      const auto nodes = frontier_.nodes(o);
+      // Every node queried before any is written: an object does not occlude itself.
+      for (std::size_t j = 0; j < nodes.size(); ++j) {
+        const auto d = depthOf(pass, run.nodeIntervals[run.firstNode[slot] + j]);
+        if (d.second >= earlierNear && d.first <= earlierFar)
+          run.query[pass][run.firstNode[slot] + j] =
+              backend_->queryBox(o, frontier_.box(o, nodes[j]));
+        else
+          ++stats_.queriesSkipped;
+      }
+      for (std::size_t j = 0; j < nodes.size(); ++j) {
+        const auto d = depthOf(pass, run.nodeIntervals[run.firstNode[slot] + j]);
+        if (d.second >= laterNear_[k] && d.first <= laterFar_[k])
+          backend_->writeBox(o, frontier_.box(o, nodes[j]));
+        else
+          ++stats_.writesSkipped;
+      }
+      const auto d = depthOf(pass, intervals_[slot]);
+      earlierNear = std::min(earlierNear, d.first);
+      earlierFar = std::max(earlierFar, d.second);
+    }
+    view.direction = -direction;
+  }
+}
+
+bool HierarchicalCollisionIndependentSets::nodeVisible(const SetRun& run, int pass,
+                                                       std::uint32_t slot, std::size_t k) const {
+  const QueryIndex q = run.query[pass][run.firstNode[slot] + k];
+  return q == kNotQueried || visible_[q];
+}
+
+void HierarchicalCollisionIndependentSets::splitSet(SetRun& run,
+                                                    std::vector<std::vector<ObjectId>>& out) {
+  const std::size_t n = run.objects.size();
+  bySlot_.assign(n, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::uint32_t slot = 0; slot < n; ++slot) {
+      const std::size_t count = frontier_.nodes(run.objects[slot]).size();
+      bool all = true;
+      for (std::size_t k = 0; k < count && all; ++k) all = nodeVisible(run, pass, slot, k);
+      bySlot_[slot] = all;
+    }
+    if (pass == 0)
+      run.cis.firstPass(bySlot_);
+    else
+      run.cis.secondPass(bySlot_);
+  }
+
+  for (const auto& members : run.cis.sets()) {
+    if (members.size() < 2) continue;
+    std::vector<ObjectId> subset;
+    for (std::uint32_t slot : members) {
+      const ObjectId o = run.objects[slot];
+      const std::size_t count = frontier_.nodes(o).size();
+      keep_.resize(count);
+      for (std::size_t k = 0; k < count; ++k)
+        keep_[k] = !(nodeVisible(run, 0, slot, k) && nodeVisible(run, 1, slot, k));
+      // A member keeps a node: not fully visible in one pass means some node was not.
+      if (frontier_.retain(o, keep_) > 0) subset.push_back(o);
+    }
+    if (subset.size() < 2) {
+      for (ObjectId o : subset) frontier_.clear(o);
+      continue;
+    }
+    std::ranges::sort(subset);
+    out.push_back(std::move(subset));
+  }
+  for (std::uint32_t slot = 0; slot < n; ++slot)
+    if (run.cis.setOf(slot) == CisConstruction::kNone ||
+        run.cis.sets()[run.cis.setOf(slot)].size() < 2)
+      frontier_.clear(run.objects[slot]);
+}
+
+CullingResult HierarchicalCollisionIndependentSets::cull(const FrameInput& frame) {
+  const VisibilityCounters before = backend_->counters();
+  CullingResult result;
+  stats_ = {};
+  ++frameCount_;
+  const std::size_t objectCount = scene_->objectCount();
+  if (objectCount < 2) return result;  // an object alone collides with nothing
+
+  backend_->setPoses(frame.poses);
+  frontier_.reset();
+  int axis = config_.firstAxis.value_or(chooseAxis(frame.poses));
+
+  std::vector<std::vector<ObjectId>> work(1);
+  for (ObjectId o = 0; o < objectCount; ++o) work[0].push_back(o);
+  std::vector<SetRun> runs;
+  std::vector<std::vector<ObjectId>> produced;
+  for (std::uint32_t level = 0; !work.empty(); ++level, axis = (axis + 1) % 3) {
+    stats_.axes.push_back(axis);
+    LevelCounters counters{.level = level};
+    const std::uint64_t queriesBefore = backend_->counters().queries;
+    runs.resize(work.size());
+    for (std::size_t s = 0; s < work.size(); ++s) {
+      runs[s].objects = std::move(work[s]);
+      for (ObjectId o : runs[s].objects) counters.nodesTested += frontier_.nodes(o).size();
+      drawSet(runs[s], level, axis, frame.poses);
+    }
+    backend_->fetchResults(visible_);  // one synchronisation per level
+
+    produced.clear();
+    for (SetRun& run : runs) splitSet(run, produced);
+    work.clear();
+    for (auto& set : produced) {
+      for (ObjectId o : set) counters.nodesKept += frontier_.nodes(o).size();
+      if (std::ranges::all_of(set, [&](ObjectId o) { return frontier_.allLeaves(o); })) {
+        PotentiallyCollidingSet out;
+        for (ObjectId o : set) {
+          result.counters.pcsTriangles += frontier_.triangleCount(o);
+          out.members.push_back(frontier_.member(o));
+        }
+        result.counters.pcsSize += set.size();
+        result.sets.push_back(std::move(out));
+      } else {
+        for (ObjectId o : set) frontier_.expand(o);
+        work.push_back(std::move(set));
+      }
+    }
+    counters.sets = produced.size();
+    counters.queries = backend_->counters().queries - queriesBefore;
+    result.counters.levels.push_back(counters);
+  }
+
+  // Lists of sets that did not recur this frame are gone for good or will be rebuilt anyway.
+  std::erase_if(lists_, [&](const auto& entry) { return entry.second.lastFrame != frameCount_; });
+  result.counters.sets = result.sets.size();
+  result.counters.visibility = backend_->counters() - before;
+  return result;
+}
+
+}  // namespace cdb
