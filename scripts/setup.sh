@@ -9,6 +9,7 @@ packages=(
   libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri
   libfcl-dev libbullet-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev
   python3 python3-matplotlib parallel
 )
 
