@@ -3,13 +3,17 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <array>
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -233,6 +237,53 @@ void checkFaces(const aiScene& scene, const std::string& file) {
   }
 }
 
+// assimp 5.2's PLY reader loops for ever, allocating, on a header that never reaches end_header (a
+// file cut short, or not a PLY at all), so such a file is refused before assimp sees it. A PLY is
+// what assimp would read as one here: the extension says so, or the text starts with "ply".
+constexpr std::string_view kPlyHeaderEnd = "end_header";
+
+bool readAsPly(std::string_view start, std::string extension) {
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == "ply" || extension == ".ply") return true;
+  const auto first = start.find_first_not_of(" \t\r\n");
+  return first != std::string_view::npos && start.substr(first, 3) == "ply";
+}
+
+[[noreturn]] void failPlyHeader(const std::string& name) {
+  throw InputError(name + ": expected a PLY header that ends with end_header, got none (the file " +
+                   "is cut short or not a PLY)");
+}
+
+void checkPlyHeader(std::string_view bytes, std::string_view hint, const std::string& name) {
+  if (readAsPly(bytes.substr(0, 64), std::string(hint)) &&
+      bytes.find(kPlyHeaderEnd) == std::string_view::npos) {
+    failPlyHeader(name);
+  }
+}
+
+// The same on a file, read in chunks until the header's end is found (at the start of any real
+// PLY, so a large file costs one chunk). A file that cannot be opened is left to assimp's message.
+void checkPlyHeader(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return;
+  std::string window;
+  std::vector<char> chunk(1 << 16);
+  bool first = true;
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    window.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    if (first && !readAsPly(std::string_view(window).substr(0, 64), file.extension().string()))
+      return;
+    first = false;
+    if (window.find(kPlyHeaderEnd) != std::string::npos) return;
+    // Keep enough of the end to find the marker across two chunks.
+    window.erase(0,
+                 window.size() > kPlyHeaderEnd.size() ? window.size() - kPlyHeaderEnd.size() : 0);
+  }
+  if (!first) failPlyHeader(file.string());
+}
+
 // The importer's scene, checked, then triangulated. MeshMerger joins vertices by position itself,
 // so assimp's own joining (which also compares normals and texture coordinates) is left out: it
 // would only cost time, six times the parse on a large PLY.
@@ -253,6 +304,7 @@ LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& op
       !ec) {
     throw InputError(name + ": mesh has no triangles (the file is empty)");
   }
+  checkPlyHeader(file);
   Assimp::Importer importer;
   const aiScene* scene = triangulated(importer, importer.ReadFile(name, 0), name);
   LoadedMesh loaded = fromScene(scene, importer, name, options);
@@ -263,6 +315,8 @@ LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& op
 LoadedMesh loadMeshFromMemory(std::span<const std::byte> bytes, std::string_view formatHint,
                               const std::string& name, const MeshLoadOptions& options) {
   if (bytes.empty()) throw InputError(name + ": mesh has no triangles (the file is empty)");
+  checkPlyHeader(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                 formatHint, name);
   Assimp::Importer importer;
   const std::string hint(formatHint);
   const aiScene* scene = triangulated(

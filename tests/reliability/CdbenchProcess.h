@@ -90,6 +90,9 @@ inline void expectNoResultFiles(const std::filesystem::path& out) {
 // Exit code `code`, one line on stderr holding every string of `mentions`, no result files.
 inline void expectCleanFailure(const ProcessResult& r, int code, const std::filesystem::path& out,
                                std::initializer_list<std::string_view> mentions) {
+  // In the XML report (--gtest_output=xml), so the messages can be reviewed in one place.
+  ::testing::Test::RecordProperty("exit_code", r.exitCode);
+  ::testing::Test::RecordProperty("stderr", r.stdErr);
   ASSERT_EQ(r.signal, 0) << "killed by signal " << r.signal << "; stderr:\n" << r.stdErr;
   EXPECT_EQ(r.exitCode, code) << r.stdErr;
   EXPECT_FALSE(r.stdErr.empty());

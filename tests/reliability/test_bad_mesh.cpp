@@ -133,6 +133,13 @@ TEST_F(BadMesh, TruncatedBinaryPly) {
   expectCleanFailure(r, 2, out(), {"cut.ply"});
 }
 
+// A PLY cut inside its header: assimp alone would loop for ever on it.
+TEST_F(BadMesh, PlyHeaderCutShort) {
+  writeAsset("header.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n");
+  const auto r = run("header");
+  expectCleanFailure(r, 2, out(), {"header.ply", "end_header"});
+}
+
 // Meshes of millions of triangles are accepted up to mesh.max_triangles (8 M by default, see
 // configs/README.md) and refused above it; the check is the same at any limit, so it is shown on
 // a small one rather than on a file that takes seconds to parse.

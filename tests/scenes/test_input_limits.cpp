@@ -109,6 +109,29 @@ TEST(MeshLoaderMessages, IndexPastTheVerticesIsAnInputError) {
   EXPECT_EQ(message.rfind(file.string() + ": ", 0), 0u) << message;
 }
 
+// assimp's PLY reader never returns on a header without end_header; the loader refuses it first.
+TEST(MeshLoaderMessages, PlyHeaderThatNeverEndsIsRefused) {
+  ScratchDir dir;
+  for (std::string_view header : {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n",
+                                  "ply\nformat ascii 1.0\nelem\x01", "ply"}) {
+    const auto file = dir.write("cut.ply", header);
+    const std::string message = errorOf([&] { (void)loadMesh(file); });
+    EXPECT_EQ(message.rfind(file.string() + ": expected a PLY header that ends with end_header", 0),
+              0u)
+        << message;
+    EXPECT_NE(errorOf([&] {
+                (void)loadMeshFromMemory(bytesOf(header), "ply", "m.ply");
+              }).find("end_header"),
+              std::string::npos);
+  }
+  // Content decides too: a PLY under another extension is read as one by assimp.
+  const auto renamed = dir.write("cut.mesh", "ply\nformat ascii 1.0\n");
+  EXPECT_NE(errorOf([&] { (void)loadMesh(renamed); }).find("end_header"), std::string::npos);
+  // An OBJ that mentions ply is not a PLY.
+  const auto obj = dir.write("ply.obj", "# ply\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_EQ(loadMesh(obj).mesh.triangleCount(), 1u);
+}
+
 TEST(MeshFromMemory, ReadsObjAndPlyLikeTheFileLoader) {
   const LoadedMesh obj = loadMeshFromMemory(bytesOf(kTetrahedronObj), "obj", "mem.obj");
   EXPECT_EQ(obj.mesh.triangleCount(), 4u);
