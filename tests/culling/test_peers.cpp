@@ -1,5 +1,6 @@
-// The CPU peers (FCL, Bullet, ODE) on their own: hand-built torus pairs whose answer is known, and
-// a random scene of 40 tori against the ground truth.
+// The CPU peers (FCL, Bullet, ODE) on their own: hand-built torus pairs whose answer is known, a
+// torus a micrometre above and below a plane, and a random scene of 40 tori against the ground
+// truth. Each peer must agree with the ground truth exactly: none needs a tolerance.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -53,6 +54,24 @@ Pose quarterTurned(double dx) {
   return p;
 }
 
+// A torus lying on a plane (30 x 30 cells, normal +y), both tilted by 0.3 about z, its lowest
+// vertices `gap` above the plane (negative: below it).
+testing::RandomScene torusOnPlane(double gap) {
+  testing::RandomScene s;
+  s.scene.meshes.push_back(makeTorus(0.5, 0.2, 20, 20));
+  s.scene.meshes.push_back(makePlane(3.0, 30));
+  s.scene.objects = {{0, false, "torus"}, {1, true, "plane"}};
+  const Eigen::Quaterniond tilt(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
+  Pose torus;
+  torus.rotation = tilt;
+  torus.translation =
+      tilt * Eigen::Vector3d(0.05, -s.scene.meshes[0].bounds().min().y() + gap, 0.03);
+  Pose plane;
+  plane.rotation = tilt;
+  s.frames.push_back({torus, plane});
+  return s;
+}
+
 class PeerTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(PeerTest, InterpenetratingToriCollide) {
@@ -72,6 +91,17 @@ TEST_P(PeerTest, ToriApartDoNotCollide) {
   // are 0.1 apart everywhere while the bounding boxes overlap. A rotation applied wrongly would
   // make them cross.
   EXPECT_TRUE(peerPairs(GetParam(), torusPair(quarterTurned(0.5)))[0].empty());
+}
+
+// Resting contact, as in the piles of env1 and env2, a micrometre either side of touching: no
+// contact margin may report the gap, and no tolerance may drop the shallow penetration.
+TEST_P(PeerTest, ShallowContactOnAPlane) {
+  for (const double gap : {1e-6, -1e-6}) {
+    const auto scene = torusOnPlane(gap);
+    const auto expected = GroundTruth(scene.scene).compute(scene.frames[0]).collidingPairs;
+    ASSERT_EQ(expected.size(), gap < 0 ? 1u : 0u) << "gap " << gap;
+    EXPECT_EQ(peerPairs(GetParam(), scene)[0], expected) << GetParam() << " gap " << gap;
+  }
 }
 
 TEST_P(PeerTest, RandomToriAgreeWithGroundTruth) {
