@@ -31,8 +31,9 @@ class NodeFrontier {
   [[nodiscard]] std::span<const std::uint32_t> nodes(ObjectId object) const {
     return active_[object];
   }
+  // The box drawn for a node: fitted to its own triangles (MeshHierarchy::ownBoxes).
   [[nodiscard]] const OrientedBox& box(ObjectId object, std::uint32_t node) const {
-    return tree(object).nodes()[node].box;
+    return hierarchies_->ownBox(object, node);
   }
   [[nodiscard]] bool allLeaves(ObjectId object) const;
 

@@ -5,6 +5,8 @@
 #include <mutex>
 #include <tuple>
 
+#include "culling/bvh/ObbFitting.h"
+
 namespace cdb {
 
 namespace {
@@ -50,7 +52,7 @@ TreeKey keyOf(const Mesh& mesh, const ObbTreeOptions& options) {
 
 struct TreeCache {
   std::mutex mutex;
-  std::map<TreeKey, std::shared_ptr<const ObbTree>> trees;
+  std::map<TreeKey, std::shared_ptr<const MeshHierarchy>> trees;
   std::uint64_t builds = 0;
 };
 
@@ -68,17 +70,31 @@ ObbTreeOptions hierarchyOptions(const Mesh& mesh, const CullingSpec& spec) {
   return options;
 }
 
-std::shared_ptr<const ObbTree> cachedObbTree(const Mesh& mesh, const ObbTreeOptions& options) {
+std::shared_ptr<const MeshHierarchy> cachedHierarchy(const Mesh& mesh,
+                                                     const ObbTreeOptions& options) {
   const TreeKey key = keyOf(mesh, options);
   TreeCache& c = cache();
   // Held during the build: a second caller for the same mesh waits instead of building it again.
   std::lock_guard lock(c.mutex);
   auto& slot = c.trees[key];
   if (!slot) {
-    slot = std::make_shared<const ObbTree>(ObbTree::build(mesh, options));
+    auto h = std::make_shared<MeshHierarchy>(MeshHierarchy{ObbTree::build(mesh, options), {}});
+    h->ownBoxes.reserve(h->tree.nodes().size());
+    for (const ObbTreeNode& node : h->tree.nodes()) {
+      const auto tris = h->tree.triangles(node);
+      const OrientedBox own =
+          options.optimized ? fitOptimizedObb(mesh, tris) : fitCovarianceObb(mesh, tris);
+      h->ownBoxes.push_back(grown(own, options.offset));
+    }
+    slot = std::move(h);
     ++c.builds;
   }
   return slot;
+}
+
+std::shared_ptr<const ObbTree> cachedObbTree(const Mesh& mesh, const ObbTreeOptions& options) {
+  auto h = cachedHierarchy(mesh, options);
+  return {h, &h->tree};
 }
 
 std::uint64_t obbTreeBuilds() {
@@ -90,7 +106,7 @@ std::uint64_t obbTreeBuilds() {
 void SceneHierarchies::build(const SceneGeometry& scene, const CullingSpec& spec) {
   trees_.clear();
   for (const Mesh& mesh : scene.meshes)
-    trees_.push_back(cachedObbTree(mesh, hierarchyOptions(mesh, spec)));
+    trees_.push_back(cachedHierarchy(mesh, hierarchyOptions(mesh, spec)));
   objectMesh_.clear();
   for (const SceneObject& object : scene.objects) objectMesh_.push_back(object.mesh);
 }

@@ -65,6 +65,24 @@ TEST(SceneHierarchies, OffsetIsAFractionOfTheMeshDiagonal) {
   EXPECT_DOUBLE_EQ(options.offset, 0.01 * mesh.bounds().diagonal().norm());
 }
 
+TEST(SceneHierarchies, OwnBoxesHoldTheirTrianglesAndAreNoLargerThanTheTreeBoxes) {
+  const Mesh mesh = makeTorus(0.5, 0.2, 20, 20);
+  const auto h = cachedHierarchy(mesh, ObbTreeOptions{.leafTriangles = 16, .offset = 1e-3});
+  ASSERT_EQ(h->ownBoxes.size(), h->tree.nodes().size());
+  for (std::uint32_t n = 0; n < h->ownBoxes.size(); ++n) {
+    const OrientedBox& own = h->ownBoxes[n];
+    EXPECT_LE(own.volume(), h->tree.nodes()[n].box.volume() * (1 + 1e-9)) << "node " << n;
+    for (std::uint32_t t : h->tree.triangles(h->tree.nodes()[n]))
+      for (std::uint32_t v : mesh.triangles[t]) {
+        const Eigen::Vector3d local =
+            own.axes.transpose() * (mesh.vertices[v].cast<double>() - own.center);
+        EXPECT_TRUE((local.cwiseAbs() - own.halfExtents).maxCoeff() <= 1e-9) << "node " << n;
+      }
+  }
+  // The root's own box is markedly tighter than the tree's (which holds its children's boxes).
+  EXPECT_LT(h->ownBoxes[0].volume(), 0.8 * h->tree.nodes()[0].box.volume());
+}
+
 struct FrontierScene {
   SceneGeometry scene;
   SceneHierarchies hierarchies;

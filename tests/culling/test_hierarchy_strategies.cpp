@@ -45,14 +45,17 @@ ToriScene threeTori() {
   return s;
 }
 
-// The node of `tree` whose box is `box` (boxes of one tree are distinct).
-std::uint32_t nodeOf(const ObbTree& tree, const OrientedBox& box) {
-  for (std::uint32_t n = 0; n < tree.nodes().size(); ++n)
-    if (tree.nodes()[n].box.center == box.center &&
-        tree.nodes()[n].box.halfExtents == box.halfExtents)
+// The node whose drawn box (its own triangles' box) is `box`; boxes of one mesh are distinct.
+std::uint32_t nodeOf(const MeshHierarchy& h, const OrientedBox& box) {
+  for (std::uint32_t n = 0; n < h.ownBoxes.size(); ++n)
+    if (h.ownBoxes[n].center == box.center && h.ownBoxes[n].halfExtents == box.halfExtents)
       return n;
   ADD_FAILURE() << "a drawn box is no node of the tree";
   return 0;
+}
+
+std::shared_ptr<const MeshHierarchy> hierarchyOf(const Mesh& mesh, const StrategyOptions& o) {
+  return cachedHierarchy(mesh, hierarchyOptions(mesh, o.culling));
 }
 
 bool inSubtree(const ObbTree& tree, std::uint32_t node, std::uint32_t root) {
@@ -126,10 +129,8 @@ TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) 
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
 
-  const ObbTree& tree =
-      cachedObbTree(s.scene.meshes[0], hierarchyOptions(s.scene.meshes[0], withLeaves(2).culling))
-          .
-          operator*();
+  const auto hierarchy = hierarchyOf(s.scene.meshes[0], withLeaves(2));
+  const ObbTree& tree = hierarchy->tree;
   const auto levels = unprunedLevels(tree);
   ASSERT_GE(levels.size(), 3u);
   ASSERT_EQ(result.counters.levels.size(), levels.size());
@@ -155,7 +156,7 @@ TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) 
                 (p % 2 == 0 ? std::vector<ObjectId>{0, 1, 2} : std::vector<ObjectId>{2, 1, 0}));
       std::multiset<std::uint32_t> queried;
       for (const OracleCall* c : pass)
-        if (c->kind == Kind::QueryBox && c->object == 1) queried.insert(nodeOf(tree, c->box));
+        if (c->kind == Kind::QueryBox && c->object == 1) queried.insert(nodeOf(*hierarchy, c->box));
       EXPECT_EQ(queried, std::multiset<std::uint32_t>(levels[level].begin(), levels[level].end()));
     }
   }
@@ -173,15 +174,14 @@ TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) 
 TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
   auto s = threeTori();
   const StrategyOptions options = withLeaves(2);
-  const auto treePtr =
-      cachedObbTree(s.scene.meshes[0], hierarchyOptions(s.scene.meshes[0], options.culling));
-  const ObbTree& tree = *treePtr;
+  const auto hierarchy = hierarchyOf(s.scene.meshes[0], options);
+  const ObbTree& tree = hierarchy->tree;
   const std::uint32_t kept = tree.nodes()[0].firstChild + 1;  // one child of the root
   ASSERT_FALSE(tree.nodes()[kept].leaf());
   // Object 0: every node outside `kept`'s subtree is fully visible below the root.
   ScriptedVisibilityOracle oracle([&](const OracleCall& q, auto) {
     if (q.object != 0) return false;
-    const std::uint32_t n = nodeOf(tree, q.box);
+    const std::uint32_t n = nodeOf(*hierarchy, q.box);
     return n != 0 && !inSubtree(tree, n, kept);
   });
   CullideWithHierarchy strategy(options);
@@ -190,7 +190,7 @@ TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
 
   for (const auto& c : oracle.log()) {
     if (c.kind != Kind::QueryBox || c.object != 0) continue;
-    const std::uint32_t n = nodeOf(tree, c.box);
+    const std::uint32_t n = nodeOf(*hierarchy, c.box);
     EXPECT_TRUE(tree.nodes()[n].depth < 2 || inSubtree(tree, n, kept)) << "node " << n;
   }
   ASSERT_EQ(result.sets.size(), 1u);
