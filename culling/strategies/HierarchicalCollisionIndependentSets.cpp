@@ -12,8 +12,12 @@
 //    fetch, instead of two synchronisations per set. The construction reads pass 2's answers
 //    only where Algorithm 3.2 would have tested.
 //  - A node is pruned when fully visible in both passes: pass 1 tests it against every object of
-//    farther Min in the set, pass 2 against every one of nearer Min, so it touches no other
-//    object of the set; objects outside the set cannot touch it (earlier levels' sets).
+//    farther Min in the set, pass 2 against every one of nearer Min, so its triangles touch no
+//    other object's of the set; objects outside the set cannot touch them (earlier levels' sets).
+//  - Intervals are those of the triangles a node may hold (its box's, clipped to the object's
+//    world box), not of the box drawn. CisConstruction's argument holds with "collide" read as
+//    "triangles touch": touching triangles lie in both objects' intervals, and a box containing
+//    a triangle that touches a drawn triangle (inside a drawn box) is not fully visible.
 // An object's nodes are all queried before any of them is written, so they never occlude each
 // other; the object is fully visible when all of them are.
 
@@ -37,6 +41,7 @@ void HierarchicalCollisionIndependentSets::attach(const SceneGeometry& scene,
   backend_ = &backend;
   hierarchies_.build(scene, options_.culling);
   frontier_.attach(scene, hierarchies_);
+  bounds_.attach(scene);
   lists_.clear();
 }
 
@@ -72,8 +77,21 @@ void HierarchicalCollisionIndependentSets::drawSet(SetRun& run, std::uint32_t le
   run.firstNode.clear();
   Aabb bounds;
   for (ObjectId o : run.objects) {
-    run.firstNode.push_back(static_cast<std::uint32_t>(run.nodeIntervals.size()));
-    intervals_.push_back(frontier_.nodeIntervals(o, poses[o], direction, run.nodeIntervals));
+    const auto first = static_cast<std::uint32_t>(run.nodeIntervals.size());
+    run.firstNode.push_back(first);
+    (void)frontier_.nodeIntervals(o, poses[o], direction, run.nodeIntervals);
+    // Node boxes are loose (a parent grows to hold its children's boxes), the object's world box
+    // is not: every triangle lies in both, so each node's interval is clipped to the object's.
+    // The intervals then order, split and skip on the triangles' extent, which is all that the
+    // safety argument needs (see the top of this file); the boxes drawn stay as they are.
+    const auto [lo, hi] = projectAabb(bounds_[o], direction);
+    std::pair<double, double> object{hi, lo};
+    for (std::size_t j = first; j < run.nodeIntervals.size(); ++j) {
+      auto& iv = run.nodeIntervals[j];
+      iv = {std::max(iv.first, lo), std::min(iv.second, hi)};
+      object = {std::min(object.first, iv.first), std::max(object.second, iv.second)};
+    }
+    intervals_.push_back(object);
     bounds.extend(frontier_.worldBounds(o, poses[o]));
   }
   run.firstNode.push_back(static_cast<std::uint32_t>(run.nodeIntervals.size()));
@@ -192,6 +210,7 @@ CullingResult HierarchicalCollisionIndependentSets::cull(const FrameInput& frame
   if (objectCount < 2) return result;  // an object alone collides with nothing
 
   backend_->setPoses(frame.poses);
+  bounds_.update(frame.poses);
   frontier_.reset();
   int axis = config_.firstAxis.value_or(chooseAxis(frame.poses));
 

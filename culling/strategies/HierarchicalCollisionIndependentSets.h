@@ -24,6 +24,7 @@
 #include "culling/CullingStrategy.h"
 #include "culling/SortedIntervals.h"
 #include "culling/StrategyRegistry.h"
+#include "culling/WorldBounds.h"
 #include "culling/bvh/NodeFrontier.h"
 #include "culling/bvh/SceneHierarchies.h"
 
@@ -96,6 +97,7 @@ class HierarchicalCollisionIndependentSets final : public CullingStrategy {
   VisibilityBackend* backend_ = nullptr;
   SceneHierarchies hierarchies_;
   NodeFrontier frontier_;
+  WorldBounds bounds_;  // the objects' world boxes, which clip the nodes' intervals
   std::map<ListKey, KeptList> lists_;
   std::uint64_t frameCount_ = 0;
   FrameStats stats_;
