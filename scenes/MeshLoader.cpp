@@ -237,11 +237,10 @@ void checkFaces(const aiScene& scene, const std::string& file) {
   }
 }
 
-// assimp 5.2's PLY reader loops for ever, allocating, on a header that never reaches end_header (a
-// file cut short, or not a PLY at all), so such a file is refused before assimp sees it. A PLY is
-// what assimp would read as one here: the extension says so, or the text starts with "ply".
-constexpr std::string_view kPlyHeaderEnd = "end_header";
-
+// assimp 5.2's PLY reader loops for ever, allocating, on a header it cannot find the end of: no
+// line "end_header" (a file cut short, or not a PLY at all), or a carriage return that does not end
+// a line. Such a file is refused before assimp sees it. A PLY is what assimp would read as one
+// here: the extension says so, or the text starts with "ply".
 bool readAsPly(std::string_view start, std::string extension) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -250,16 +249,52 @@ bool readAsPly(std::string_view start, std::string extension) {
   return first != std::string_view::npos && start.substr(first, 3) == "ply";
 }
 
-[[noreturn]] void failPlyHeader(const std::string& name) {
-  throw InputError(name + ": expected a PLY header that ends with end_header, got none (the file " +
-                   "is cut short or not a PLY)");
+// Reads the header line by line as text arrives; lines end in LF, CRs are allowed only right
+// before one (CRLF files).
+class PlyHeaderScan {
+ public:
+  enum class State { Ends, NeedMore, BareCarriageReturn };
+
+  // `text` is everything read so far (it only grows); `atEnd` when nothing more will come.
+  State feed(std::string_view text, bool atEnd) {
+    while (true) {
+      const auto newline = text.find('\n', lineStart_);
+      if (newline == std::string_view::npos && !atEnd) return State::NeedMore;
+      const std::size_t lineEnd = newline == std::string_view::npos ? text.size() : newline;
+      std::string_view line = text.substr(lineStart_, lineEnd - lineStart_);
+      ++line_;
+      while (!line.empty() && line.back() == '\r' && newline != std::string_view::npos)
+        line.remove_suffix(1);
+      if (line.find('\r') != std::string_view::npos) return State::BareCarriageReturn;
+      const auto token = line.find_first_not_of(" \t");
+      if (token != std::string_view::npos && line.substr(token, 10) == "end_header" &&
+          (line.size() == token + 10 || std::isspace(static_cast<unsigned char>(line[token + 10]))))
+        return State::Ends;
+      if (newline == std::string_view::npos) return State::NeedMore;  // at the end: no header end
+      lineStart_ = newline + 1;
+    }
+  }
+  [[nodiscard]] int line() const { return line_; }
+
+ private:
+  std::size_t lineStart_ = 0;
+  int line_ = 0;
+};
+
+void failPlyHeader(PlyHeaderScan::State state, int line, const std::string& name) {
+  if (state == PlyHeaderScan::State::BareCarriageReturn) {
+    throw InputError(name + ": PLY header line " + std::to_string(line) +
+                     ": expected lines ending in LF or CRLF, got a carriage return inside a line");
+  }
+  throw InputError(name + ": expected a PLY header that ends with a line end_header, got none " +
+                   "(the file is cut short or not a PLY)");
 }
 
 void checkPlyHeader(std::string_view bytes, std::string_view hint, const std::string& name) {
-  if (readAsPly(bytes.substr(0, 64), std::string(hint)) &&
-      bytes.find(kPlyHeaderEnd) == std::string_view::npos) {
-    failPlyHeader(name);
-  }
+  if (!readAsPly(bytes.substr(0, 64), std::string(hint))) return;
+  PlyHeaderScan scan;
+  const auto state = scan.feed(bytes, true);
+  if (state != PlyHeaderScan::State::Ends) failPlyHeader(state, scan.line(), name);
 }
 
 // The same on a file, read in chunks until the header's end is found (at the start of any real
@@ -267,21 +302,23 @@ void checkPlyHeader(std::string_view bytes, std::string_view hint, const std::st
 void checkPlyHeader(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return;
-  std::string window;
+  std::string text;
   std::vector<char> chunk(1 << 16);
-  bool first = true;
-  while (in) {
+  PlyHeaderScan scan;
+  bool decided = false;
+  while (true) {
     in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-    window.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
-    if (first && !readAsPly(std::string_view(window).substr(0, 64), file.extension().string()))
-      return;
-    first = false;
-    if (window.find(kPlyHeaderEnd) != std::string::npos) return;
-    // Keep enough of the end to find the marker across two chunks.
-    window.erase(0,
-                 window.size() > kPlyHeaderEnd.size() ? window.size() - kPlyHeaderEnd.size() : 0);
+    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    const bool atEnd = !in;
+    if (!decided) {
+      if (!readAsPly(std::string_view(text).substr(0, 64), file.extension().string())) return;
+      decided = true;
+    }
+    const auto state = scan.feed(text, atEnd);
+    if (state == PlyHeaderScan::State::Ends) return;
+    if (state == PlyHeaderScan::State::BareCarriageReturn || atEnd)
+      failPlyHeader(state, scan.line(), file.string());
   }
-  if (!first) failPlyHeader(file.string());
 }
 
 // The importer's scene, checked, then triangulated. MeshMerger joins vertices by position itself,

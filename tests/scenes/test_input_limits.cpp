@@ -113,10 +113,13 @@ TEST(MeshLoaderMessages, IndexPastTheVerticesIsAnInputError) {
 TEST(MeshLoaderMessages, PlyHeaderThatNeverEndsIsRefused) {
   ScratchDir dir;
   for (std::string_view header : {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n",
-                                  "ply\nformat ascii 1.0\nelem\x01", "ply"}) {
+                                  "ply\nformat ascii 1.0\nelem\x01", "ply",
+                                  "ply\nformat ascii 1.0\nelement vertex 3 end_header\n",
+                                  "ply\nformat ascii 1.0\nelement vertex 3\nend_headerX\n"}) {
     const auto file = dir.write("cut.ply", header);
     const std::string message = errorOf([&] { (void)loadMesh(file); });
-    EXPECT_EQ(message.rfind(file.string() + ": expected a PLY header that ends with end_header", 0),
+    EXPECT_EQ(message.rfind(
+                  file.string() + ": expected a PLY header that ends with a line end_header", 0),
               0u)
         << message;
     EXPECT_NE(errorOf([&] {
@@ -124,9 +127,24 @@ TEST(MeshLoaderMessages, PlyHeaderThatNeverEndsIsRefused) {
               }).find("end_header"),
               std::string::npos);
   }
+  // A carriage return that does not end a line stalls assimp's header reader just the same.
+  const auto cr = dir.write("cr.ply", "ply\nformat ascii 1.0\nelement vertex 3\n\rend_header\n0\n");
+  EXPECT_NE(
+      errorOf([&] { (void)loadMesh(cr); }).find("PLY header line 4: expected lines ending in LF"),
+      std::string::npos)
+      << errorOf([&] { (void)loadMesh(cr); });
   // Content decides too: a PLY under another extension is read as one by assimp.
   const auto renamed = dir.write("cut.mesh", "ply\nformat ascii 1.0\n");
   EXPECT_NE(errorOf([&] { (void)loadMesh(renamed); }).find("end_header"), std::string::npos);
+  // The header's end as assimp reads it: own line, blanks before, whitespace or the end after.
+  for (std::string_view header : {"ply\nformat ascii 1.0\n  end_header \n", "ply\r\nend_header\r\n",
+                                  "ply\nformat ascii 1.0\nend_header"}) {
+    EXPECT_EQ(errorOf([&] {
+                (void)loadMeshFromMemory(bytesOf(header), "ply", "m.ply");
+              }).find("end_header"),
+              std::string::npos)
+        << header;
+  }
   // An OBJ that mentions ply is not a PLY.
   const auto obj = dir.write("ply.obj", "# ply\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   EXPECT_EQ(loadMesh(obj).mesh.triangleCount(), 1u);
