@@ -12,12 +12,14 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
 
 #include "core/Errors.h"
+#include "scenes/PlyBounds.h"
 
 namespace cdb {
 namespace {
@@ -268,16 +270,22 @@ class PlyHeaderScan {
       if (line.find('\r') != std::string_view::npos) return State::BareCarriageReturn;
       const auto token = line.find_first_not_of(" \t");
       if (token != std::string_view::npos && line.substr(token, 10) == "end_header" &&
-          (line.size() == token + 10 || std::isspace(static_cast<unsigned char>(line[token + 10]))))
+          (line.size() == token + 10 ||
+           std::isspace(static_cast<unsigned char>(line[token + 10])))) {
+        bodyStart_ = newline == std::string_view::npos ? text.size() : newline + 1;
         return State::Ends;
+      }
       if (newline == std::string_view::npos) return State::NeedMore;  // at the end: no header end
       lineStart_ = newline + 1;
     }
   }
   [[nodiscard]] int line() const { return line_; }
+  // Where the data after the end_header line begins, once feed() has returned Ends.
+  [[nodiscard]] std::size_t bodyStart() const { return bodyStart_; }
 
  private:
   std::size_t lineStart_ = 0;
+  std::size_t bodyStart_ = 0;
   int line_ = 0;
 };
 
@@ -290,35 +298,28 @@ void failPlyHeader(PlyHeaderScan::State state, int line, const std::string& name
                    "(the file is cut short or not a PLY)");
 }
 
-void checkPlyHeader(std::string_view bytes, std::string_view hint, const std::string& name) {
+// A PLY's header must end where assimp can see it, and its body must hold what the header
+// declares (PlyBounds.h).
+void checkPly(std::string_view bytes, std::string_view hint, const std::string& name) {
   if (!readAsPly(bytes.substr(0, 64), std::string(hint))) return;
   PlyHeaderScan scan;
   const auto state = scan.feed(bytes, true);
   if (state != PlyHeaderScan::State::Ends) failPlyHeader(state, scan.line(), name);
+  checkPlyBodyBounds(bytes, scan.bodyStart(), name);
 }
 
-// The same on a file, read in chunks until the header's end is found (at the start of any real
-// PLY, so a large file costs one chunk). A file that cannot be opened is left to assimp's message.
-void checkPlyHeader(const std::filesystem::path& file) {
+// The same on a file. A file that cannot be opened is left to assimp's message; a PLY is read
+// whole, as assimp reads it anyway.
+void checkPly(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return;
-  std::string text;
-  std::vector<char> chunk(1 << 16);
-  PlyHeaderScan scan;
-  bool decided = false;
-  while (true) {
-    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
-    const bool atEnd = !in;
-    if (!decided) {
-      if (!readAsPly(std::string_view(text).substr(0, 64), file.extension().string())) return;
-      decided = true;
-    }
-    const auto state = scan.feed(text, atEnd);
-    if (state == PlyHeaderScan::State::Ends) return;
-    if (state == PlyHeaderScan::State::BareCarriageReturn || atEnd)
-      failPlyHeader(state, scan.line(), file.string());
-  }
+  std::string start(64, '\0');
+  in.read(start.data(), static_cast<std::streamsize>(start.size()));
+  start.resize(static_cast<std::size_t>(in.gcount()));
+  if (!readAsPly(start, file.extension().string())) return;
+  std::ostringstream rest;
+  rest << in.rdbuf();
+  checkPly(start + rest.str(), file.extension().string(), file.string());
 }
 
 // The importer's scene, checked, then triangulated. MeshMerger joins vertices by position itself,
@@ -341,7 +342,7 @@ LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& op
       !ec) {
     throw InputError(name + ": mesh has no triangles (the file is empty)");
   }
-  checkPlyHeader(file);
+  checkPly(file);
   Assimp::Importer importer;
   const aiScene* scene = triangulated(importer, importer.ReadFile(name, 0), name);
   LoadedMesh loaded = fromScene(scene, importer, name, options);
@@ -352,8 +353,8 @@ LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& op
 LoadedMesh loadMeshFromMemory(std::span<const std::byte> bytes, std::string_view formatHint,
                               const std::string& name, const MeshLoadOptions& options) {
   if (bytes.empty()) throw InputError(name + ": mesh has no triangles (the file is empty)");
-  checkPlyHeader(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-                 formatHint, name);
+  checkPly(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), formatHint,
+           name);
   Assimp::Importer importer;
   const std::string hint(formatHint);
   const aiScene* scene = triangulated(

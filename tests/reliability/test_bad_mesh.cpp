@@ -140,6 +140,20 @@ TEST_F(BadMesh, PlyHeaderCutShort) {
   expectCleanFailure(r, 2, out(), {"header.ply", "end_header"});
 }
 
+// A list length in a binary PLY that the file cannot hold: assimp alone would allocate gigabytes.
+TEST_F(BadMesh, PlyCountBeyondTheFile) {
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uint uint vertex_indices\nend_header\n";
+  ply += std::string(36, '\0');
+  ply += std::string("\xff\xff\xff\x7f", 4);  // 2^31 - 1 indices announced
+  ply += std::string(12, '\0');
+  writeAsset("huge.ply", ply);
+  const auto r = run("huge");
+  expectCleanFailure(r, 2, out(), {"huge.ply", "PLY element 'face'", "does not fit"});
+}
+
 // Meshes of millions of triangles are accepted up to mesh.max_triangles (8 M by default, see
 // configs/README.md) and refused above it; the check is the same at any limit, so it is shown on
 // a small one rather than on a file that takes seconds to parse.
