@@ -68,7 +68,12 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
   if (options.seed) config.seed = *options.seed;
   if (options.conservative) config.culling.conservative = *options.conservative;
 
-  StrategyRegistry::builtin().validate(config.sweep.strategies);
+  try {
+    StrategyRegistry::builtin().validate(config.sweep.strategies);
+  } catch (const InputError& e) {
+    if (options.strategies) throw;
+    throw InputError(options.configPath.string() + ": sweep.strategies: " + e.what());
+  }
   for (int r : config.sweep.resolutions)
     if (r < 1 || r > 16384)
       throw InputError("resolution " + std::to_string(r) + ": expected 1..16384 pixels");
@@ -150,8 +155,15 @@ RunSummary runScenario(const RunOptions& options) {
   RunIdentity identity{config.environment, identityHash(config, options, configText),
                        options.configPath.string(), configText, {}};
   for (const auto& c : plan) identity.plan.push_back(c.key());
-  const CellStore store(options.outDir, identity);
 
+
+  HeadlessGlContext gl(parseGlPlatform(options.glPlatform));
+  GlOcclusionQueryBackend backend(gl, {config.culling.conservative, config.culling.rawDepthOffset});
+  for (int r : config.sweep.resolutions)
+    if (r > backend.maxResolution())
+      throw InputError("resolution " + std::to_string(r) + ": above the largest framebuffer this GL renders (" +
+                       std::to_string(backend.maxResolution()) + " pixels, " + gl.info().glRenderer + ")");
+  const CellStore store(options.outDir, identity);
   RunSummary summary;
   std::vector<Cell> todo;
   for (const auto& c : shareOf(plan, shard)) {
@@ -160,9 +172,6 @@ RunSummary runScenario(const RunOptions& options) {
     else
       todo.push_back(c);
   }
-
-  HeadlessGlContext gl(parseGlPlatform(options.glPlatform));
-  GlOcclusionQueryBackend backend(gl, {config.culling.conservative, config.culling.rawDepthOffset});
 
   const auto& registry = StrategyRegistry::builtin();
   StrategyOptions strategyOptions;

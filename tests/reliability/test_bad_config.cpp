@@ -90,8 +90,7 @@ TEST_F(BadConfig, UnknownStrategyOnTheCommandLine) {
 }
 
 // No --strategies: the config's own list is what is wrong, so the message names the config.
-// Disabled until the runner prefixes the registry's message with the config file and key.
-TEST_F(BadConfig, DISABLED_UnknownStrategyInTheConfig) {
+TEST_F(BadConfig, UnknownStrategyInTheConfig) {
   const auto config =
       dir.write("strategy.yaml", env3With("^  strategies: .*$", "  strategies: [cullide, nosuch]"));
   const auto r = runCdbench({"run", config.string(), "--quiet", "--out", out().string()});
@@ -204,9 +203,7 @@ TEST_F(BadConfig, FramesZero) {
   expectCleanFailure(r, 2, out(), {"--frames", "expected"});
 }
 
-// Disabled until main.cpp prints CLI11's parse errors on one line (CLI11 adds a second line,
-// "Run with --help for more information.").
-TEST_F(BadConfig, DISABLED_UnknownOption) {
+TEST_F(BadConfig, UnknownOption) {
   const auto r = run(kConfigDir + "env3.yaml", {"--resolution", "800"});
   expectCleanFailure(r, 2, out(), {"--resolution"});
 }
