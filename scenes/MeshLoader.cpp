@@ -252,7 +252,7 @@ bool readAsPly(std::string_view start, std::string extension) {
 }
 
 // Reads the header line by line as text arrives; lines end in LF, CRs are allowed only right
-// before one (CRLF files).
+// before one (CRLF files). A vertical tab after end_header does not end the token for assimp.
 class PlyHeaderScan {
  public:
   enum class State { Ends, NeedMore, BareCarriageReturn };
@@ -271,7 +271,7 @@ class PlyHeaderScan {
       const auto token = line.find_first_not_of(" \t");
       if (token != std::string_view::npos && line.substr(token, 10) == "end_header" &&
           (line.size() == token + 10 ||
-           std::isspace(static_cast<unsigned char>(line[token + 10])))) {
+           std::string_view(" \t\f\r\n").find(line[token + 10]) != std::string_view::npos)) {
         bodyStart_ = newline == std::string_view::npos ? text.size() : newline + 1;
         return State::Ends;
       }
@@ -322,6 +322,21 @@ void checkPly(const std::filesystem::path& file) {
   checkPly(start + rest.str(), file.extension().string(), file.string());
 }
 
+// assimp 5.2's OBJ importer crashes on a material library statement when it reads from memory (it
+// opens the library through its memory file system). Collision detection needs no materials, and
+// from memory there is no library to open, so such statements become comments.
+std::string withoutMaterialLibraries(std::string_view obj) {
+  std::string out(obj);
+  for (std::size_t line = 0; line < out.size();) {
+    const std::size_t token = out.find_first_not_of(" \t", line);
+    if (token != std::string::npos && out.compare(token, 6, "mtllib") == 0) out[token] = '#';
+    const std::size_t next = out.find('\n', line);
+    if (next == std::string::npos) break;
+    line = next + 1;
+  }
+  return out;
+}
+
 // The importer's scene, checked, then triangulated. MeshMerger joins vertices by position itself,
 // so assimp's own joining (which also compares normals and texture coordinates) is left out: it
 // would only cost time, six times the parse on a large PLY.
@@ -355,8 +370,16 @@ LoadedMesh loadMeshFromMemory(std::span<const std::byte> bytes, std::string_view
   if (bytes.empty()) throw InputError(name + ": mesh has no triangles (the file is empty)");
   checkPly(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), formatHint,
            name);
+  std::string hint(formatHint);
+  std::transform(hint.begin(), hint.end(), hint.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::string obj;
+  if (hint == "obj" || hint.empty()) {
+    obj = withoutMaterialLibraries(
+        std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    bytes = std::as_bytes(std::span<const char>(obj.data(), obj.size()));
+  }
   Assimp::Importer importer;
-  const std::string hint(formatHint);
   const aiScene* scene = triangulated(
       importer, importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str()), name);
   LoadedMesh loaded = fromScene(scene, importer, name, options);

@@ -115,7 +115,8 @@ TEST(MeshLoaderMessages, PlyHeaderThatNeverEndsIsRefused) {
   for (std::string_view header : {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n",
                                   "ply\nformat ascii 1.0\nelem\x01", "ply",
                                   "ply\nformat ascii 1.0\nelement vertex 3 end_header\n",
-                                  "ply\nformat ascii 1.0\nelement vertex 3\nend_headerX\n"}) {
+                                  "ply\nformat ascii 1.0\nelement vertex 3\nend_headerX\n",
+                                  "ply\nformat ascii 1.0\nend_header\v\n"}) {
     const auto file = dir.write("cut.ply", header);
     const std::string message = errorOf([&] { (void)loadMesh(file); });
     EXPECT_EQ(message.rfind(
@@ -160,6 +161,13 @@ TEST(MeshFromMemory, ReadsObjAndPlyLikeTheFileLoader) {
       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
       "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   EXPECT_EQ(loadMeshFromMemory(bytesOf(ply), "ply", "mem.ply").mesh.triangleCount(), 1u);
+}
+
+// assimp's OBJ importer crashes opening a material library through its memory file system.
+TEST(MeshFromMemory, MaterialLibrariesAreIgnored) {
+  constexpr std::string_view obj =
+      "mtllib  5 -1\n  mtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  EXPECT_EQ(loadMeshFromMemory(bytesOf(obj), "obj", "m.obj").mesh.triangleCount(), 1u);
 }
 
 TEST(MeshFromMemory, BadBytesAreInputErrorsNamingTheMesh) {
