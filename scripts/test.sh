@@ -13,9 +13,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${CDBENCH_JOBS:-$(nproc)}
+# Each stage's wall time on stderr, so a CI log shows where the minutes go.
+stage_start=$SECONDS
+stage() { echo "test: $1 took $((SECONDS - stage_start)) s (total $SECONDS s)" >&2; stage_start=$SECONDS; }
 bash scripts/setup.sh
+stage setup
 bash scripts/build.sh release
+stage "release build"
 ctest --preset release -j "$jobs"
+stage "release ctest"
 
 # ctest regex and the same as a gtest negative filter.
 asan_excluded='Dragon|_256|_800|ToriAndPlanes|OnRandomTori|RandomSoupInvariants|PeerTest.RandomTori|MatchesGroundTruthWith(OneSetOfAllTori|TriangleSubsets)|TwoLargeSets|TriangleTriangleRandom.*/(2|3|42)$'
@@ -23,6 +29,7 @@ asan_excluded_gtest='*Dragon*:*_256:*_800:*ToriAndPlanes*:*OnRandomTori:*RandomS
 
 if [[ "${CDBENCH_SKIP_SANITIZERS:-0}" != 1 ]]; then
   bash scripts/build.sh debug
+  stage "sanitizer build"
   ctest --preset debug -j "$jobs" -E "$asan_excluded"
   for suite in test_scenes test_exact; do
     ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp \
@@ -35,8 +42,10 @@ if [[ "${CDBENCH_SKIP_SANITIZERS:-0}" != 1 ]]; then
   for f in frames.csv tables.csv tables.md meta.json; do
     [[ -s "$smoke/$f" ]] || { echo "test: sanitizer smoke run wrote no $f" >&2; exit 1; }
   done
+  stage "sanitizer tests"
 fi
 
 if [[ "${CDBENCH_SKIP_FUZZ:-0}" != 1 ]]; then
   bash scripts/fuzz.sh "${CDBENCH_FUZZ_SECONDS:-20}"
+  stage "fuzz build and runs"
 fi
