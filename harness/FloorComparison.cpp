@@ -14,7 +14,7 @@ namespace cdb {
 
 FloorComparison compareWithFloor(HeadlessGlContext& gl, const RecordedScene& recorded,
                                  const std::string& strategyName, int resolution, int frame,
-                                 int repeats) {
+                                 int repeats, const StrategyRegistry& registry) {
   if (frame < 0 || static_cast<std::uint32_t>(frame) >= recorded.recording.frameCount())
     throw InputError("frame " + std::to_string(frame) + ": the recording has " +
                      std::to_string(recorded.recording.frameCount()) + " frames");
@@ -25,7 +25,6 @@ FloorComparison compareWithFloor(HeadlessGlContext& gl, const RecordedScene& rec
   StrategyOptions so;
   so.resolution = resolution;
   so.culling = recorded.config.culling;
-  const auto& registry = StrategyRegistry::builtin();
 
   GlOcclusionQueryBackend backend(gl, options);
   backend.attachScene(recorded.scene);

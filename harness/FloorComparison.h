@@ -4,6 +4,7 @@
 // the strategy's own overhead on this backend; 1.0 means all of its time is GL work it must issue.
 #include <string>
 
+#include "culling/StrategyRegistry.h"
 #include "culling/visibility/VisibilityBackend.h"
 #include "harness/RecordedScene.h"
 #include "render/HeadlessGlContext.h"
@@ -22,9 +23,11 @@ struct FloorComparison {
 // backend (after one warm-up cull, so that strategies keeping state across frames record the
 // same work they are timed on), then `repeats` timed culls on the bare backend and `repeats`
 // timed replays of the recording. Throws InputError for an unknown strategy or frame. A strategy
-// that issues no GL work (the CPU peers) has no floor: its ratio is meaningless.
+// that issues no GL work (the CPU peers) has no floor: its ratio is meaningless. `registry`
+// creates the strategy (tests pass one with a deliberately slowed or faulty strategy).
 [[nodiscard]] FloorComparison compareWithFloor(HeadlessGlContext& gl, const RecordedScene& recorded,
                                                const std::string& strategy, int resolution,
-                                               int frame, int repeats = 3);
+                                               int frame, int repeats = 3,
+                                               const StrategyRegistry& registry = StrategyRegistry::builtin());
 
 }  // namespace cdb
