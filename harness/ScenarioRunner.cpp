@@ -146,6 +146,7 @@ PoseRecording framesFor(const Cell& cell, const ScenarioConfig& cfg, const Scene
 }  // namespace
 
 RunSummary runScenario(const RunOptions& options) {
+  const auto runStart = Clock::now();
   const ScenarioConfig config = effectiveConfig(options);
   const Shard shard = options.shard ? parseShard(*options.shard) : Shard{};
   const auto assetDirs = assetSearchPath(options.assetDirs);
@@ -165,6 +166,7 @@ RunSummary runScenario(const RunOptions& options) {
                        std::to_string(backend.maxResolution()) + " pixels, " + gl.info().glRenderer + ")");
   const CellStore store(options.outDir, identity);
   RunSummary summary;
+  WallTimeBreakdown& time = summary.time;
   std::vector<Cell> todo;
   for (const auto& c : shareOf(plan, shard)) {
     if (store.done(c))
@@ -197,6 +199,7 @@ RunSummary runScenario(const RunOptions& options) {
 
   for (const Cell& cell : todo) {
     if (!sceneCount || *sceneCount != cell.objectCount) {
+      const auto t0 = Clock::now();
       sceneCount = cell.objectCount;
       cfg = cell.objectCount < 0 ? config : withObjectCount(config, cell.objectCount);
       exact.reset();
@@ -204,17 +207,24 @@ RunSummary runScenario(const RunOptions& options) {
       scene = buildScene(*cfg, assetDirs);
       objects = movingBodies(*scene);
       exact.emplace(*scene);
-      if (options.groundTruth) truth.emplace(*scene);
       backend.attachScene(*scene);
       framesOf = nullptr;
+      const auto t1 = Clock::now();
+      if (options.groundTruth) truth.emplace(*scene);
+      time.setupSeconds += msSince(t0, t1) / 1e3;
+      time.truthSeconds += msSince(t1, Clock::now()) / 1e3;
     }
     if (!framesOf || !framesOf->sameFrames(cell)) {
       framesOf = &cell;
-      recording = framesFor(cell, *cfg, *scene, options, store);
+      {
+        const ScopedSeconds timed(time.simulationSeconds);
+        recording = framesFor(cell, *cfg, *scene, options, store);
+      }
       if (options.recordFile) writePoseRecording(recording, *options.recordFile);
       measured.clear();
       for (std::uint32_t f = 0; f < recording.frameCount(); f += stride) measured.push_back(f);
       truthPairs.assign(recording.frameCount(), {});
+      const ScopedSeconds timed(time.truthSeconds);
       if (truth)
         for (std::uint32_t f : measured) truthPairs[f] = truth->compute(recording.frame(f)).collidingPairs;
     }
@@ -223,10 +233,14 @@ RunSummary runScenario(const RunOptions& options) {
                        " repeat=" + std::to_string(cell.repeat) + " res=" +
                        std::to_string(cell.resolution));
     strategyOptions.resolution = cell.resolution;
-    auto strategy = registry.create(cell.strategy, strategyOptions);
-    strategy->attach(*scene, backend);
-    // Shader compilation and framebuffer allocation at this resolution are not CD time.
-    warmUpBackend(backend, *scene, recording.frame(0), cell.resolution);
+    std::unique_ptr<CullingStrategy> strategy;
+    {
+      const ScopedSeconds timed(time.setupSeconds);
+      strategy = registry.create(cell.strategy, strategyOptions);
+      strategy->attach(*scene, backend);
+      // Shader compilation and framebuffer allocation at this resolution are not CD time.
+      warmUpBackend(backend, *scene, recording.frame(0), cell.resolution);
+    }
 
     std::vector<FrameRecord> rows;
     for (std::uint32_t f : measured) {
@@ -238,6 +252,7 @@ RunSummary runScenario(const RunOptions& options) {
       const CollisionReport report =
           decidedByStrategy ? std::move(*culled.decided) : exact->run(poses, culled.sets);
       const auto t2 = Clock::now();
+      time.cdSeconds += msSince(t0, t2) / 1e3;
 
       FrameRecord r;
       r.environment = cfg->environment;
@@ -259,6 +274,7 @@ RunSummary runScenario(const RunOptions& options) {
       r.draws = culled.counters.visibility.draws;
       r.trianglesDrawn = culled.counters.visibility.trianglesDrawn;
       if (truth) {
+        const ScopedSeconds timed(time.truthSeconds);
         auto cmp = compareWithTruth(truthPairs[f], report.collidingPairs, culled.sets,
                                     scene->objectCount());
         if (decidedByStrategy) cmp.cullingMisses = cmp.falseNegatives;  // no sets to split
@@ -281,6 +297,7 @@ RunSummary runScenario(const RunOptions& options) {
     progress.cellDone();
   }
   progress.finish();
+  time.wallSeconds = msSince(runStart, Clock::now()) / 1e3;
 
   nlohmann::json shardMeta;
   shardMeta["shard"] = std::to_string(shard.index) + "/" + std::to_string(shard.count);
@@ -288,6 +305,7 @@ RunSummary runScenario(const RunOptions& options) {
   shardMeta["command_line"] = options.commandLine;
   shardMeta["machine"] = toJson(probeMachine());
   shardMeta["gl"] = glJson(gl.info());
+  shardMeta["wall_time"] = time.toJson();
   writeFileAtomically(options.outDir /
                           ("shard-" + std::to_string(shard.index) + "-of-" +
                            std::to_string(shard.count) + ".json"),

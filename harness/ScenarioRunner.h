@@ -4,6 +4,7 @@
 // Each finished cell is kept on disk (see CellStore); when every cell of the run is there,
 // frames.csv, tables.csv, tables.md and meta.json are written into the output folder.
 #include "harness/RunOptions.h"
+#include "harness/WallTimeBreakdown.h"
 #include "scenes/ScenarioConfig.h"
 
 namespace cdb {
@@ -15,6 +16,7 @@ struct RunSummary {
   bool complete = false;         // every cell of the whole run is on disk and the tables written
   std::uint64_t falseNegatives = 0;
   std::uint64_t falsePositives = 0;
+  WallTimeBreakdown time;  // this invocation's wall time, by where it went
 };
 
 // Thrown when SIGINT/SIGTERM stopped the run between frames; finished cells are kept.

@@ -124,6 +124,7 @@ int main(int argc, char** argv) {
     for (int i = 0; i < argc; ++i) run.commandLine.emplace_back(argv[i]);
 
     const auto summary = cdb::runScenario(run);
+    if (!run.quiet) std::fprintf(stderr, "time: %s\n", summary.time.summaryLine().c_str());
     if (summary.complete)
       std::fprintf(stderr, "wrote %zu frame rows to %s (%zu cells measured, %zu resumed; false negatives: %llu)\n",
                    summary.frameRows, run.outDir.c_str(), summary.cellsRun, summary.cellsSkipped,

@@ -60,6 +60,19 @@ TEST(Cli, Env3RunWritesFramesTablesAndMetaWithNoFalseNegatives) {
   EXPECT_FALSE(meta["gl"]["renderer"].get<std::string>().empty());
   EXPECT_FALSE(meta["machine"]["git_commit"].get<std::string>().empty());
   EXPECT_EQ(meta["config"]["environment"], "env3");
+
+  // The wall-time breakdown: the parts are disjoint, so they fit in the wall time, and the CD
+  // time it counts is the frames' own.
+  const auto& t = meta["shards"][0]["wall_time"];
+  const double wall = t["wall_s"], cd = t["cd_s"], sim = t["simulation_s"];
+  const double truth = t["ground_truth_s"], setup = t["setup_s"];
+  EXPECT_GT(cd, 0.0);
+  EXPECT_GT(sim, 0.0);
+  EXPECT_LE(cd + sim + truth + setup, wall);
+  EXPECT_NEAR(t["harness_s"].get<double>(), wall - cd - sim, 1e-9);
+  double framesCd = 0;
+  for (const auto& row : rows) framesCd += row.cdMs / 1e3;
+  EXPECT_NEAR(cd, framesCd, 1e-3 + 1e-3 * framesCd);
 }
 
 TEST(Cli, MalformedConfigExitsTwoWithOneLine) {
