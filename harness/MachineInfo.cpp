@@ -1,5 +1,7 @@
 #include "harness/MachineInfo.h"
 
+#include "render/HeadlessGlContext.h"
+
 #include <sys/utsname.h>
 #include <unistd.h>
 
@@ -83,6 +85,12 @@ std::string utcTimestamp() {
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
+}
+
+nlohmann::json toJson(const GlInfo& info) {
+  return {{"platform", info.platform}, {"egl_vendor", info.eglVendor},
+          {"egl_version", info.eglVersion}, {"vendor", info.glVendor},
+          {"renderer", info.glRenderer}, {"version", info.glVersion}};
 }
 
 }  // namespace cdb

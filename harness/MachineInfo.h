@@ -21,4 +21,9 @@ struct MachineInfo {
 [[nodiscard]] nlohmann::json toJson(const MachineInfo& m);
 [[nodiscard]] std::string utcTimestamp();
 
+struct GlInfo;
+// The GL platform, vendor, renderer and version: beside every result, since timings from
+// different renderers are not comparable.
+[[nodiscard]] nlohmann::json toJson(const GlInfo& gl);
+
 }  // namespace cdb

@@ -107,12 +107,6 @@ std::uint64_t identityHash(const ScenarioConfig& config, const RunOptions& optio
   return h.value();
 }
 
-nlohmann::json glJson(const GlInfo& info) {
-  return {{"platform", info.platform}, {"egl_vendor", info.eglVendor},
-          {"egl_version", info.eglVersion}, {"vendor", info.glVendor},
-          {"renderer", info.glRenderer}, {"version", info.glVersion}};
-}
-
 // The recording of a cell's (object count, repeat): replayed from --replay, reused from the run
 // folder when an earlier invocation simulated it, else simulated now and kept there.
 PoseRecording framesFor(const Cell& cell, const ScenarioConfig& cfg, const SceneGeometry& scene,
@@ -304,7 +298,7 @@ RunSummary runScenario(const RunOptions& options) {
   shardMeta["created_utc"] = utcTimestamp();
   shardMeta["command_line"] = options.commandLine;
   shardMeta["machine"] = toJson(probeMachine());
-  shardMeta["gl"] = glJson(gl.info());
+  shardMeta["gl"] = toJson(gl.info());
   shardMeta["wall_time"] = time.toJson();
   writeFileAtomically(options.outDir /
                           ("shard-" + std::to_string(shard.index) + "-of-" +

@@ -5,12 +5,6 @@
 
 namespace cdb {
 
-namespace {
-MeshRange wholeMesh(const SceneGeometry& scene, ObjectId o) {
-  return {o, 0, static_cast<std::uint32_t>(scene.meshOf(o).triangleCount())};
-}
-}  // namespace
-
 CollisionIndependentSets::CollisionIndependentSets(const StrategyOptions& options, CisOptions cis)
     : options_(options), config_(cis) {}
 

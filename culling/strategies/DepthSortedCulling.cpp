@@ -1,14 +1,9 @@
 #include "culling/strategies/DepthSortedCulling.h"
 
-#include <algorithm>
+#include "culling/TwoPassPruning.h"
 
 namespace cdb {
 
-namespace {
-MeshRange wholeMesh(const SceneGeometry& scene, ObjectId o) {
-  return {o, 0, static_cast<std::uint32_t>(scene.meshOf(o).triangleCount())};
-}
-}  // namespace
 
 DepthSortedCulling::DepthSortedCulling(const StrategyOptions& options) : options_(options) {}
 
@@ -42,29 +37,10 @@ void DepthSortedCulling::pruneObjects(std::vector<ObjectId>& pcs, int axis) {
   farToNear(axis, order);
   for (ObjectId o : pcs) inSet_[o] = 0;
 
-  const ViewSpec view = viewAlong(axis, bounds_.unionOf(pcs));
-  backend_->beginPass(view, DepthUse::SharedFirst);
-  for (ObjectId o : order) {
-    backend_->queryRange(wholeMesh(*scene_, o));
-    backend_->writeRange(wholeMesh(*scene_, o));
-  }
-  ViewSpec opposite = view;
-  opposite.direction = -view.direction;
-  backend_->beginPass(opposite, DepthUse::SharedSecond);
-  for (auto it = order.rbegin(); it != order.rend(); ++it) {
-    backend_->queryRange(wholeMesh(*scene_, *it));
-    backend_->writeRange(wholeMesh(*scene_, *it));
-  }
-  backend_->fetchResults(visible_);
-
-  const std::size_t n = order.size();
-  pcs.clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (!(visible_[i] && visible_[2 * n - 1 - i])) pcs.push_back(order[i]);
+  pcs = pruneObjectsTwoPass(*backend_, *scene_, order,
+                            PassPair::shared(viewAlong(axis, bounds_.unionOf(pcs))), visible_);
 }
 
-// The same two passes with one query per triangle; an object's own triangles are all tested
-// before it is drawn, so an object never occludes itself.
 void DepthSortedCulling::pruneTriangles(std::vector<SetMember>& members, int axis) {
   if (members.size() < 2) {
     members.clear();
@@ -87,37 +63,8 @@ void DepthSortedCulling::pruneTriangles(std::vector<SetMember>& members, int axi
     for (ObjectId o : order) ordered.push_back(std::move(members[slotOf[o]]));
   }
 
-  auto drawMember = [&](const SetMember& m) {
-    for (std::uint32_t t : m.triangles) backend_->queryRange({m.object, t, 1});
-    if (m.triangles.size() == scene_->meshOf(m.object).triangleCount())
-      backend_->writeRange(wholeMesh(*scene_, m.object));
-    else
-      backend_->writeTriangles(m.object, m.triangles);
-  };
-  const ViewSpec view = viewAlong(axis, bounds_.unionOf(objects));
-  backend_->beginPass(view, DepthUse::SharedFirst);
-  for (const auto& m : ordered) drawMember(m);
-  ViewSpec opposite = view;
-  opposite.direction = -view.direction;
-  backend_->beginPass(opposite, DepthUse::SharedSecond);
-  for (auto it = ordered.rbegin(); it != ordered.rend(); ++it) drawMember(*it);
-  backend_->fetchResults(visible_);
-
-  std::size_t total = 0;
-  for (const auto& m : ordered) total += m.triangles.size();
-  members.clear();
-  std::size_t first1 = 0;
-  std::size_t end2 = 2 * total;  // pass 2 runs members in reverse, so member i ends where i-1 began
-  for (auto& m : ordered) {
-    const std::size_t count = m.triangles.size();
-    const std::size_t first2 = end2 - count;
-    SetMember out{m.object, {}};
-    for (std::size_t k = 0; k < count; ++k)
-      if (!(visible_[first1 + k] && visible_[first2 + k])) out.triangles.push_back(m.triangles[k]);
-    first1 += count;
-    end2 = first2;
-    if (!out.triangles.empty()) members.push_back(std::move(out));
-  }
+  members = pruneTrianglesTwoPass(*backend_, *scene_, std::move(ordered),
+                                  PassPair::shared(viewAlong(axis, bounds_.unionOf(objects))), visible_);
 }
 
 CullingResult DepthSortedCulling::cull(const FrameInput& frame) {
@@ -131,27 +78,10 @@ CullingResult DepthSortedCulling::cull(const FrameInput& frame) {
   std::vector<ObjectId> pcs = allObjects_;
   for (int axis = 0; axis < 3; ++axis) pruneObjects(pcs, axis);
 
-  std::vector<SetMember> members;
-  for (ObjectId o : pcs) {
-    SetMember m{o, {}};
-    m.triangles.resize(scene_->meshOf(o).triangleCount());
-    for (std::uint32_t t = 0; t < m.triangles.size(); ++t) m.triangles[t] = t;
-    members.push_back(std::move(m));
-  }
+  std::vector<SetMember> members = withAllTriangles(*scene_, pcs);
   for (int axis = 0; axis < 3; ++axis) pruneTriangles(members, axis);
 
-  CullingResult result;
-  result.counters.pcsSize = members.size();
-  for (auto& m : members) {
-    result.counters.pcsTriangles += m.triangles.size();
-    if (m.triangles.size() == scene_->meshOf(m.object).triangleCount()) m.triangles.clear();
-  }
-  if (!members.empty()) {
-    result.sets.push_back({std::move(members)});
-    result.counters.sets = 1;
-  }
-  result.counters.visibility = backend_->counters() - before;
-  return result;
+  return singleSetResult(*scene_, std::move(members), backend_->counters() - before);
 }
 
 }  // namespace cdb

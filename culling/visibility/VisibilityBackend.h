@@ -44,6 +44,11 @@ struct MeshRange {
   std::uint32_t triangleCount = 0;
 };
 
+// Every triangle of an object's mesh.
+[[nodiscard]] inline MeshRange wholeMesh(const SceneGeometry& scene, ObjectId object) {
+  return {object, 0, static_cast<std::uint32_t>(scene.meshOf(object).triangleCount())};
+}
+
 struct VisibilityOptions {
   // Conservative: every pixel a triangle touches is covered (rasterisation widened by at least a
   // pixel) and depth is offset by the depth slope times the pixel size plus the depth buffer's

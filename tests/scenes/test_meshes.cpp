@@ -13,6 +13,7 @@
 #include "core/Errors.h"
 #include "scenes/AssetPath.h"
 #include "scenes/MeshLoader.h"
+#include "scenes/MeshMeasures.h"
 #include "scenes/ProceduralMeshes.h"
 
 namespace cdb {
@@ -27,14 +28,6 @@ Eigen::Vector3d vertex(const Mesh& mesh, std::uint32_t i) {
 
 Eigen::Vector3d normalOf(const Mesh& mesh, const Triangle& t) {
   return (vertex(mesh, t[1]) - vertex(mesh, t[0])).cross(vertex(mesh, t[2]) - vertex(mesh, t[0]));
-}
-
-double signedVolume(const Mesh& mesh) {
-  double v = 0;
-  for (const auto& t : mesh.triangles) {
-    v += vertex(mesh, t[0]).dot(vertex(mesh, t[1]).cross(vertex(mesh, t[2])));
-  }
-  return v / 6;
 }
 
 // Closed with consistent winding: every directed edge once, and its reverse once.
