@@ -17,10 +17,12 @@
 namespace cdb {
 namespace {
 
-enum class SceneKind { Tori, ToriAndPlanes, Dragons };
+// FewTori is the cheap family the sanitizer stage of scripts/test.sh runs for every strategy.
+enum class SceneKind { FewTori, Tori, ToriAndPlanes, Dragons };
 
 std::string sceneName(SceneKind k) {
   switch (k) {
+    case SceneKind::FewTori: return "FewTori";
     case SceneKind::Tori: return "Tori";
     case SceneKind::ToriAndPlanes: return "ToriAndPlanes";
     case SceneKind::Dragons: return "Dragons";
@@ -40,6 +42,7 @@ class GlFixture {
 
 std::optional<testing::RandomScene> makeScene(SceneKind kind) {
   switch (kind) {
+    case SceneKind::FewTori: return testing::randomTori(8, 0.7, 2, 14);
     case SceneKind::Tori: return testing::randomTori(30, 1.2, 2, 11);
     case SceneKind::ToriAndPlanes: return testing::randomTori(20, 1.2, 2, 12, true);
     case SceneKind::Dragons: {
@@ -49,11 +52,14 @@ std::optional<testing::RandomScene> makeScene(SceneKind kind) {
       Mesh dragon = loadMesh(*path).mesh;
       normaliseMesh(dragon, 1.0);
       s.scene.meshes.push_back(std::move(dragon));
-      for (int i = 0; i < 6; ++i) s.scene.objects.push_back({0, false, "dragon"});
+      // Three dragons, one frame: CULLIDE tests each of their 143k triangles in six passes, about
+      // 860k occlusion queries at 10-20 us each on llvmpipe, per resolution.
+      constexpr int kDragons = 3;
+      for (int i = 0; i < kDragons; ++i) s.scene.objects.push_back({0, false, "dragon"});
       std::mt19937_64 rng(13);
-      for (int f = 0; f < 2; ++f) {
+      for (int f = 0; f < 1; ++f) {
         std::vector<Pose> poses;
-        for (int i = 0; i < 6; ++i) poses.push_back(testing::randomPose(rng, 0.6));
+        for (int i = 0; i < kDragons; ++i) poses.push_back(testing::randomPose(rng, 0.3));
         s.frames.push_back(std::move(poses));
       }
       return s;
@@ -104,8 +110,9 @@ TEST_P(StrategyAgainstTruth, ConservativeModeLosesNoContact) {
 std::vector<Param> allParams() {
   std::vector<Param> out;
   for (const auto& name : StrategyRegistry::builtin().names())
-    for (auto kind : {SceneKind::Tori, SceneKind::ToriAndPlanes, SceneKind::Dragons})
-      for (int res : {64, 256, 800}) out.emplace_back(name, kind, res);
+    for (auto kind : {SceneKind::FewTori, SceneKind::Tori, SceneKind::ToriAndPlanes, SceneKind::Dragons})
+      for (int res : {64, 256, 800})
+        if (kind != SceneKind::FewTori || res == 64) out.emplace_back(name, kind, res);
   return out;
 }
 
