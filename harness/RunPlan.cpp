@@ -5,8 +5,11 @@
 namespace cdb {
 
 std::string Cell::key() const {
-  return "o" + (objectCount < 0 ? std::string("-") : std::to_string(objectCount)) + "_r" +
-         std::to_string(repeat) + "_" + strategy + "_" + std::to_string(resolution);
+  // Appended piece by piece: GCC 12 reports a false -Wrestrict on `"o" + std::string(...)`.
+  std::string key = "o";
+  key += objectCount < 0 ? std::string("-") : std::to_string(objectCount);
+  key += "_r" + std::to_string(repeat) + "_" + strategy + "_" + std::to_string(resolution);
+  return key;
 }
 
 Shard parseShard(const std::string& text) {

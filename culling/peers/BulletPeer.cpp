@@ -22,16 +22,21 @@ constexpr btScalar kMargin = 0;
 // contact-breaking threshold, which would keep points up to 0.02 apart.
 constexpr btScalar kContactDistance = 0;
 
-// A mesh in the layout btTriangleIndexVertexArray points into (Bullet keeps the pointers).
-struct MeshArrays {
+}  // namespace
+
+// A mesh in the layout btTriangleIndexVertexArray points into (Bullet keeps the pointers). Outside
+// the anonymous namespace because BulletPeer::Impl, which has external linkage, holds it.
+struct BulletMeshArrays {
   std::vector<btScalar> vertices;  // x y z per vertex, in btScalar so GImpact reads it directly
   std::vector<int> indices;        // three per triangle
   std::unique_ptr<btTriangleIndexVertexArray> array;
   std::unique_ptr<btGImpactMeshShape> shape;
 };
 
-std::unique_ptr<MeshArrays> buildShape(const Mesh& mesh) {
-  auto m = std::make_unique<MeshArrays>();
+namespace {
+
+std::unique_ptr<BulletMeshArrays> buildShape(const Mesh& mesh) {
+  auto m = std::make_unique<BulletMeshArrays>();
   for (const auto& v : mesh.vertices)
     for (int k = 0; k < 3; ++k) m->vertices.push_back(btScalar(v[k]));
   for (const Triangle& t : mesh.triangles)
@@ -81,7 +86,7 @@ struct BulletPeer::Impl {
   }
 
   // Declaration order is destruction order reversed: the world goes before what it points to.
-  std::vector<std::unique_ptr<MeshArrays>> meshes;  // one shape per mesh, shared by its objects
+  std::vector<std::unique_ptr<BulletMeshArrays>> meshes;  // one shape per mesh, shared by its objects
   btDefaultCollisionConfiguration configuration;
   btCollisionDispatcher dispatcher{&configuration};
   btDbvtBroadphase broadphase;

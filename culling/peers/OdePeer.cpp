@@ -16,21 +16,22 @@ namespace {
 // instead of refining contacts for the dynamics.
 constexpr int kContactFlags = 1 | CONTACTS_UNIMPORTANT;
 
+}  // namespace
+
 // ODE keeps pointers into the arrays a trimesh data is built from, so the peer owns copies.
-struct MeshData {
+// Outside the anonymous namespace because OdePeer::Impl, which has external linkage, holds it.
+struct OdeMeshData {
   std::vector<Eigen::Vector3f> vertices;
   std::vector<Triangle> triangles;
   dTriMeshDataID data = nullptr;
 };
-
-}  // namespace
 
 struct OdePeer::Impl {
   explicit Impl(const SceneGeometry& scene) {
     const auto guard = OdeRuntime::lock();
     space = dHashSpaceCreate(nullptr);
     for (const Mesh& mesh : scene.meshes) {
-      MeshData& m = meshes.emplace_back();
+      OdeMeshData& m = meshes.emplace_back();
       m.vertices = mesh.vertices;
       m.triangles = mesh.triangles;
       m.data = dGeomTriMeshDataCreate();
@@ -50,7 +51,7 @@ struct OdePeer::Impl {
   ~Impl() {
     const auto guard = OdeRuntime::lock();
     dSpaceDestroy(space);  // destroys its geoms (cleanup mode is on by default)
-    for (const MeshData& m : meshes) dGeomTriMeshDataDestroy(m.data);
+    for (const OdeMeshData& m : meshes) dGeomTriMeshDataDestroy(m.data);
   }
 
   static ObjectId idOf(dGeomID geom) {
@@ -68,7 +69,7 @@ struct OdePeer::Impl {
 
   OdeRuntime runtime;  // first member: ODE stays initialised until everything below is gone
   dSpaceID space = nullptr;
-  std::vector<MeshData> meshes;  // one trimesh data per mesh, shared by its objects
+  std::vector<OdeMeshData> meshes;  // one trimesh data per mesh, shared by its objects
   std::vector<dGeomID> geoms;    // per object
   dContact contact{};            // dCollide's output, unused beyond its count
   std::vector<ObjectPair> pairs;

@@ -33,7 +33,7 @@ struct ToriScene {
   SceneGeometry scene;
   std::vector<Pose> poses;
 };
-ToriScene threeTori() {
+ToriScene threeToriWithPoses() {
   ToriScene s;
   s.scene.meshes.push_back(makeTorus(0.5, 0.2, 4, 4));
   for (int i = 0; i < 3; ++i) {
@@ -123,7 +123,7 @@ void expectObjectsDrawnAsGroups(const ScriptedVisibilityOracle& oracle) {
 // ---- cullide_bvh ---------------------------------------------------------------------------
 
 TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) {
-  auto s = threeTori();
+  auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return false; });
   CullideWithHierarchy strategy(withLeaves(2));
   strategy.attach(s.scene, oracle);
@@ -172,7 +172,7 @@ TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) 
 }
 
 TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
-  auto s = threeTori();
+  auto s = threeToriWithPoses();
   const StrategyOptions options = withLeaves(2);
   const auto hierarchy = hierarchyOf(s.scene.meshes[0], options);
   const ObbTree& tree = hierarchy->tree;
@@ -208,7 +208,7 @@ TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
 }
 
 TEST(CullideBvhOracle, EverythingFullyVisibleEndsAfterTheFirstAxis) {
-  auto s = threeTori();
+  auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return true; });
   CullideWithHierarchy strategy(withLeaves(2));
   strategy.attach(s.scene, oracle);
@@ -222,7 +222,7 @@ TEST(CullideBvhOracle, EverythingFullyVisibleEndsAfterTheFirstAxis) {
 }
 
 TEST(CullideBvhOracle, AnObjectLeftAloneCollidesWithNothing) {
-  auto s = threeTori();
+  auto s = threeToriWithPoses();
   // Object 1 is hidden in every pass, the others fully visible: it is left alone.
   ScriptedVisibilityOracle oracle([](const OracleCall& q, auto) { return q.object != 1; });
   CullideWithHierarchy strategy(withLeaves(2));
@@ -235,7 +235,7 @@ TEST(CullideBvhOracle, AnObjectLeftAloneCollidesWithNothing) {
 // ---- ours ----------------------------------------------------------------------------------
 
 TEST(OursOracle, EachLevelLooksAlongTheNextAxisWithOnePassPairPerSet) {
-  auto s = threeTori();
+  auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return false; });
   HierarchicalCollisionIndependentSets strategy(withLeaves(2), HierarchicalCisOptions{1});
   strategy.attach(s.scene, oracle);
@@ -262,7 +262,7 @@ TEST(OursOracle, EachLevelLooksAlongTheNextAxisWithOnePassPairPerSet) {
 }
 
 TEST(OursOracle, FirstObjectOfAPassIsNotQueriedAndTheLastNotWritten) {
-  auto s = threeTori();
+  auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return false; });
   HierarchicalCollisionIndependentSets strategy(withLeaves(2), HierarchicalCisOptions{0});
   strategy.attach(s.scene, oracle);

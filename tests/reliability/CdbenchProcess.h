@@ -108,6 +108,7 @@ inline void expectCleanFailure(const ProcessResult& r, int code, const std::file
 }
 
 inline const std::string kConfigDir = std::string(CDBENCH_SOURCE_DIR) + "/configs/";
+inline const std::string kEnv3 = kConfigDir + "env3.yaml";
 
 // Arguments of a run small enough to finish in seconds, so a test that expects a failure fails
 // for its own reason and not by running long. One strategy, named, so the suite does not depend

@@ -9,8 +9,6 @@
 namespace cdb::test {
 namespace {
 
-const std::string kEnv3 = kConfigDir + "env3.yaml";
-
 class BadEnvironment : public ::testing::Test {
  protected:
   ScratchDir dir;

@@ -10,8 +10,6 @@
 namespace cdb::test {
 namespace {
 
-const std::string kEnv3 = kConfigDir + "env3.yaml";
-
 class BadRecording : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
