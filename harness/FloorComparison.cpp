@@ -12,14 +12,39 @@
 
 namespace cdb {
 
-FloorComparison compareWithFloor(HeadlessGlContext& gl, const RecordedScene& recorded,
-                                 const std::string& strategyName, int resolution, int frame,
-                                 int repeats, const StrategyRegistry& registry) {
+namespace {
+
+std::span<const Pose> posesOf(const RecordedScene& recorded, int frame) {
   if (frame < 0 || static_cast<std::uint32_t>(frame) >= recorded.recording.frameCount())
     throw InputError("frame " + std::to_string(frame) + ": the recording has " +
                      std::to_string(recorded.recording.frameCount()) + " frames");
+  return recorded.recording.frame(static_cast<std::uint32_t>(frame));
+}
+
+}  // namespace
+
+VisibilityCounters recordCullWork(RecordingBackend& recorder, const RecordedScene& recorded,
+                                  const std::string& strategyName, int resolution, int frame,
+                                  const StrategyRegistry& registry) {
+  const auto poses = posesOf(recorded, frame);
+  StrategyOptions so;
+  so.resolution = resolution;
+  so.culling = recorded.config.culling;
+  auto strategy = registry.create(strategyName, so);
+  strategy->attach(recorded.scene, recorder);
+  (void)strategy->cull({poses, frame});
+  recorder.clear();
+  recorder.attachScene(recorded.scene);
+  recorder.resetCounters();
+  (void)strategy->cull({poses, frame});
+  return recorder.counters();
+}
+
+FloorComparison compareWithFloor(HeadlessGlContext& gl, const RecordedScene& recorded,
+                                 const std::string& strategyName, int resolution, int frame,
+                                 int repeats, const StrategyRegistry& registry) {
+  const auto poses = posesOf(recorded, frame);
   repeats = std::max(repeats, 1);
-  const auto poses = recorded.recording.frame(static_cast<std::uint32_t>(frame));
   const VisibilityOptions options{recorded.config.culling.conservative,
                                   recorded.config.culling.rawDepthOffset};
   StrategyOptions so;
@@ -30,17 +55,9 @@ FloorComparison compareWithFloor(HeadlessGlContext& gl, const RecordedScene& rec
   backend.attachScene(recorded.scene);
   warmUpBackend(backend, recorded.scene, poses, resolution);
 
-  // The work, recorded from a second cull of the frame.
   RecordingBackend recorder(backend);
-  auto recordingStrategy = registry.create(strategyName, so);
-  recordingStrategy->attach(recorded.scene, recorder);
-  (void)recordingStrategy->cull({poses, frame});
-  recorder.clear();
-  recorder.attachScene(recorded.scene);  // the floor replays a self-contained recording
-  backend.resetCounters();
-  (void)recordingStrategy->cull({poses, frame});
   FloorComparison c;
-  c.work = backend.counters();
+  c.work = recordCullWork(recorder, recorded, strategyName, resolution, frame, registry);
 
   // The strategy alone, on the bare backend, with the same history.
   auto strategy = registry.create(strategyName, so);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "culling/StrategyRegistry.h"
+#include "culling/visibility/RecordingBackend.h"
 #include "culling/visibility/VisibilityBackend.h"
 #include "harness/RecordedScene.h"
 #include "render/HeadlessGlContext.h"
@@ -18,6 +19,15 @@ struct FloorComparison {
   bool answersMatch = true;  // the replay answered every query as the strategy's run did
   [[nodiscard]] double ratio() const { return strategyBestSeconds / floorBestSeconds; }
 };
+
+// The GL work of one cull of `frame` by a new `strategy` at `resolution`, left in `recorder` (its
+// ops attach the scene first, so the recording replays on its own). The strategy culls the frame
+// once unrecorded before, so that strategies keeping state across frames record the work they are
+// timed on. `recorder` wraps a backend attached to the scene and warmed up at `resolution`.
+// Returns that backend's counters of the recorded cull.
+VisibilityCounters recordCullWork(RecordingBackend& recorder, const RecordedScene& recorded,
+                                  const std::string& strategy, int resolution, int frame,
+                                  const StrategyRegistry& registry = StrategyRegistry::builtin());
 
 // Culls `frame` of `recorded` with `strategy` at `resolution`: one untimed cull on a recording
 // backend (after one warm-up cull, so that strategies keeping state across frames record the

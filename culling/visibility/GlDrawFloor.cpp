@@ -19,6 +19,7 @@ struct GlDrawFloor::Command {
 };
 
 struct GlDrawFloor::Program {
+  const SceneGeometry* scene = nullptr;
   std::vector<Command> commands;
   std::vector<VisibilityOptions> options;
   std::vector<std::vector<Pose>> poses;
@@ -42,7 +43,9 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
     scene = op.scene;
   }
   if (scene == nullptr) throw InputError("the recording attaches no scene");
+  p.scene = scene;
   pipeline_.attach(*scene);
+  attached_ = scene;
   const GlSceneBuffers& buffers = pipeline_.buffers();
   const auto slotOf = [&](ObjectId o) -> const GlMeshSlot& {
     if (o >= buffers.objectCount())
@@ -116,6 +119,11 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
 
 void GlDrawFloor::run(const Program& p, std::vector<std::vector<std::uint8_t>>& answers) {
   using C = Command::Kind;
+  // Another prepared recording may have replaced the scene since this one was lowered.
+  if (attached_ != p.scene) {
+    pipeline_.attach(*p.scene);
+    attached_ = p.scene;
+  }
   pipeline_.setConservative(options_.conservative);
   pipeline_.setRawDepthOffset(options_.rawDepthOffset);
   for (const Command& c : p.commands) {
@@ -162,21 +170,42 @@ void GlDrawFloor::run(const Program& p, std::vector<std::vector<std::uint8_t>>& 
   if (pipeline_.pendingQueries() > 0) pipeline_.fetch(leftover_);
 }
 
+GlDrawFloor::Prepared::Prepared(Program program)
+    : program_(std::make_unique<Program>(std::move(program))),
+      answers_(program_->expected.size()) {}
+GlDrawFloor::Prepared::Prepared(Prepared&&) noexcept = default;
+GlDrawFloor::Prepared& GlDrawFloor::Prepared::operator=(Prepared&&) noexcept = default;
+GlDrawFloor::Prepared::~Prepared() = default;
+std::size_t GlDrawFloor::Prepared::passes() const { return program_->passes.size(); }
+std::size_t GlDrawFloor::Prepared::queries() const { return program_->queries; }
+std::size_t GlDrawFloor::Prepared::draws() const { return program_->draws; }
+std::size_t GlDrawFloor::Prepared::fetches() const { return program_->expected.size(); }
+
+GlDrawFloor::Prepared GlDrawFloor::prepare(std::span<const RecordedOp> ops) {
+  return Prepared(lower(ops));
+}
+
+void GlDrawFloor::replayOnce(Prepared& prepared) { run(*prepared.program_, prepared.answers_); }
+
+bool GlDrawFloor::Prepared::answersMatch() const {
+  for (std::size_t i = 0; i < answers_.size(); ++i)
+    if (answers_[i] != *program_->expected[i]) return false;
+  return true;
+}
+
 FloorTiming GlDrawFloor::replay(std::span<const RecordedOp> ops, int repeats) {
-  const Program program = lower(ops);
-  std::vector<std::vector<std::uint8_t>> answers(program.expected.size());
+  Prepared prepared = prepare(ops);
   FloorTiming timing;
-  timing.passes = program.passes.size();
-  timing.queries = program.queries;
-  timing.draws = program.draws;
-  timing.fetches = program.expected.size();
-  run(program, answers);  // warm-up
-  for (std::size_t i = 0; i < answers.size(); ++i)
-    timing.answersMatch = timing.answersMatch && answers[i] == *program.expected[i];
+  timing.passes = prepared.passes();
+  timing.queries = prepared.queries();
+  timing.draws = prepared.draws();
+  timing.fetches = prepared.fetches();
+  replayOnce(prepared);  // warm-up
+  timing.answersMatch = prepared.answersMatch();
   double total = 0.0, best = 0.0;
   for (int r = 0; r < std::max(repeats, 1); ++r) {
     const auto start = std::chrono::steady_clock::now();
-    run(program, answers);
+    replayOnce(prepared);
     const double s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     total += s;

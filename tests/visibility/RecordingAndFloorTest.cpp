@@ -115,6 +115,36 @@ TEST(GlDrawFloor, RawModeRecordingReplaysInRawMode) {
   EXPECT_TRUE(floor.replay(recording.ops(), 1).answersMatch);
 }
 
+TEST(GlDrawFloor, PreparedRecordingsReplayAgainAndAgainEachOnItsScene) {
+  const ToriRun run;
+  ToriRun shifted;
+  shifted.scene.meshes[0] = makeTorus(1.25, 0.25, 24, 20);  // wider tori: more of them touch
+  GlOcclusionQueryBackend gl(test::sharedGlContext());
+  RecordingBackend first(gl);
+  first.attachScene(run.scene);
+  run.frame(first);
+  RecordingBackend second(gl);
+  second.attachScene(shifted.scene);
+  shifted.frame(second);
+  // A replay drawing one recording's commands on the other scene would answer differently.
+  ASSERT_NE(first.ops().back().answers, second.ops().back().answers);
+
+  GlDrawFloor floor(test::sharedGlContext());
+  GlDrawFloor::Prepared a = floor.prepare(first.ops());
+  GlDrawFloor::Prepared b = floor.prepare(second.ops());
+  EXPECT_EQ(a.queries(), 30u);
+  EXPECT_EQ(a.draws(), 61u);
+  EXPECT_EQ(a.passes(), 5u);
+  EXPECT_EQ(a.fetches(), 1u);
+  // Alternating: each replay brings its own scene back into the floor's buffers.
+  for (int i = 0; i < 2; ++i) {
+    floor.replayOnce(a);
+    EXPECT_TRUE(a.answersMatch());
+    floor.replayOnce(b);
+    EXPECT_TRUE(b.answersMatch());
+  }
+}
+
 TEST(GlDrawFloor, RecordingWithoutSceneIsRejected) {
   GlDrawFloor floor(test::sharedGlContext());
   std::vector<RecordedOp> ops(1);
