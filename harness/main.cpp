@@ -10,6 +10,7 @@
 #include "core/Errors.h"
 #include "culling/StrategyRegistry.h"
 #include "harness/MergeRuns.h"
+#include "harness/RegressionCheck.h"
 #include "harness/RunOptions.h"
 #include "harness/ScenarioRunner.h"
 #include "render/HeadlessGlContext.h"
@@ -74,6 +75,15 @@ int main(int argc, char** argv) {
   mergeCmd->add_option("--out", mergeOut, "output folder")->required();
   mergeCmd->add_option("dirs", mergeDirs, "run folders of the shards")->required();
 
+  cdb::CheckOptions check;
+  auto* checkCmd = app.add_subcommand(
+      "check", "CI regression check: correctness on fixed frames, timing ratios against a baseline");
+  checkCmd->add_option("--baseline", check.baselineFile, "baseline JSON")->capture_default_str();
+  checkCmd->add_flag("--update-baseline", check.updateBaseline,
+                     "write the baseline from this run's ratios instead of comparing with it");
+  checkCmd->add_option("--gl", check.glPlatform, "auto | device | surfaceless")->capture_default_str();
+  checkCmd->add_option("--assets", check.assetDirs, "asset folder (repeatable), before $CDBENCH_ASSETS");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -91,6 +101,13 @@ int main(int argc, char** argv) {
       for (const auto& name : cdb::StrategyRegistry::builtin().names())
         std::printf("%-12s %s\n", name.c_str(), cdb::StrategyRegistry::builtin().description(name).c_str());
       return 0;
+    }
+    if (*checkCmd) {
+      for (int i = 0; i < argc; ++i) check.commandLine.emplace_back(argv[i]);
+      check.progress = stderr;
+      const auto report = cdb::runRegressionCheck(check);
+      cdb::printCheckReport(report, stdout);
+      return report.passed() ? 0 : 1;
     }
     if (*mergeCmd) {
       const auto merged = cdb::mergeRuns(mergeOut, mergeDirs);

@@ -1,0 +1,49 @@
+#pragma once
+// results/baseline.json: the ratios `cdbench check --update-baseline` measured, the machine and
+// renderer they were measured on, and the rule by which a later check judges its own ratios
+// against them.
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/CheckTiming.h"
+
+namespace cdb {
+
+struct CheckBaseline {
+  std::string createdUtc;
+  std::string glRenderer;  // GL_RENDERER: ratios of another renderer are not comparable
+  std::string buildType;   // CMAKE_BUILD_TYPE: nor are those of an unoptimised build
+  nlohmann::json machine;  // MachineInfo, for the reader
+  nlohmann::json gl;       // platform, vendor, renderer, version
+  std::vector<std::string> commandLine;
+  std::map<std::string, RatioMeasurement> ratios;  // by RatioMeasurement::key
+};
+
+// Throws InputError naming the file when it is missing, not JSON or not a baseline.
+[[nodiscard]] CheckBaseline readCheckBaseline(const std::filesystem::path& file);
+// Written atomically; throws RunError when the file cannot be written.
+void writeCheckBaseline(const CheckBaseline& baseline, const std::filesystem::path& file);
+
+// The tolerance rule. On the 2-core llvmpipe machine, over 18 checks while other jobs kept it
+// busy (README, "CI regression check"), a speedup's largest over its smallest value stayed below
+// 1.3 and a strategy/floor ratio, ~1 by nature, within 0.58..1.58; an injected 3x slowdown of one
+// strategy takes a speedup to a third and its floor ratio to ~3.
+//  Speedup:   fails below baseline / kSpeedupTolerance.
+//  OverFloor: fails above max(baseline * kFloorTolerance, kFloorAllowedAtLeast): a strategy within
+//             kFloorAllowedAtLeast of its floor is never a regression, whatever its baseline.
+inline constexpr double kSpeedupTolerance = 1.5;
+inline constexpr double kFloorTolerance = 1.5;
+inline constexpr double kFloorAllowedAtLeast = 2.0;
+
+struct RatioVerdict {
+  double allowed = 0;  // the bound the measured value is held to (a minimum for a speedup)
+  bool passed = false;
+};
+
+[[nodiscard]] RatioVerdict judgeRatio(RatioKind kind, double baseline, double measured);
+
+}  // namespace cdb

@@ -1,0 +1,41 @@
+#pragma once
+// The correctness part of `cdbench check`: on each fixed frame of the plan, every strategy's
+// colliding pairs against the ground truth's (SPEC: no pair pruned or split, pairs equal).
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "culling/StrategyRegistry.h"
+#include "harness/CheckPlan.h"
+#include "harness/CheckScenes.h"
+#include "harness/TruthComparison.h"
+#include "render/HeadlessGlContext.h"
+
+namespace cdb {
+
+struct CorrectnessRow {
+  std::string scene;  // CheckScene::label()
+  int frame = 0;
+  std::string strategy;
+  int resolution = 0;  // 0: a CPU peer, which decides the pairs itself and draws nothing
+  std::size_t truthPairs = 0;
+  std::size_t foundPairs = 0;
+  TruthComparison comparison;  // for a CPU peer, cullingMisses counts its false negatives
+
+  // Truth pairs exist (the frame tests something), none is missed, none is added, and none was
+  // pruned or split across sets before the exact phase.
+  [[nodiscard]] bool passed() const {
+    return truthPairs > 0 && comparison.falseNegatives == 0 && comparison.falsePositives == 0 &&
+           comparison.cullingMisses == 0;
+  }
+};
+
+// Every case of `plan` for each of `strategies` (created by `registry`). A strategy that decides
+// the pairs itself (CullingResult::decided: the CPU peers) runs at the first resolution only:
+// the frame-buffer size does not enter its answer.
+[[nodiscard]] std::vector<CorrectnessRow> checkCorrectness(HeadlessGlContext& gl, CheckScenes& scenes,
+                                                           const std::vector<CorrectnessCase>& cases,
+                                                           const std::vector<std::string>& strategies,
+                                                           const StrategyRegistry& registry);
+
+}  // namespace cdb

@@ -1,0 +1,106 @@
+#include "harness/CheckTiming.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/Errors.h"
+#include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "harness/BackendWarmUp.h"
+#include "harness/FloorComparison.h"
+
+namespace cdb {
+
+namespace {
+
+double timedCullSeconds(CullingStrategy& strategy, const FrameInput& input) {
+  const auto t0 = std::chrono::steady_clock::now();
+  (void)strategy.cull(input);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+struct TimedRound {
+  double numerator = 0, denominator = 0;  // seconds
+  [[nodiscard]] double ratio() const { return numerator / denominator; }
+};
+
+// The median round (the lower middle one of an even count).
+RatioMeasurement medianRound(std::vector<TimedRound> rounds, std::string key, RatioKind kind) {
+  std::sort(rounds.begin(), rounds.end(),
+            [](const TimedRound& a, const TimedRound& b) { return a.ratio() < b.ratio(); });
+  const TimedRound& m = rounds[(rounds.size() - 1) / 2];
+  return {std::move(key), kind, m.ratio(), m.numerator * 1e3, m.denominator * 1e3};
+}
+
+}  // namespace
+
+std::vector<RatioMeasurement> measureSpeedups(HeadlessGlContext& gl, CheckScenes& scenes,
+                                              const std::vector<SpeedupCase>& cases,
+                                              const StrategyRegistry& registry) {
+  std::vector<RatioMeasurement> out;
+  for (const auto& c : cases) {
+    const RecordedScene& recorded = scenes.get(c.scene);
+    if (c.frame < 0 || static_cast<std::uint32_t>(c.frame) >= recorded.recording.frameCount())
+      throw InputError(c.key() + ": frame out of the " +
+                       std::to_string(recorded.recording.frameCount()) + " simulated");
+    const auto poses = recorded.recording.frame(static_cast<std::uint32_t>(c.frame));
+    GlOcclusionQueryBackend backend(
+        gl, {recorded.config.culling.conservative, recorded.config.culling.rawDepthOffset});
+    backend.attachScene(recorded.scene);
+    warmUpBackend(backend, recorded.scene, poses, c.resolution);
+    StrategyOptions options;
+    options.resolution = c.resolution;
+    options.culling = recorded.config.culling;
+    auto slow = registry.create(c.baseline, options);
+    auto fast = registry.create(c.strategy, options);
+    slow->attach(recorded.scene, backend);
+    fast->attach(recorded.scene, backend);
+    const FrameInput input{poses, c.frame};
+    (void)slow->cull(input);
+    (void)fast->cull(input);
+    std::vector<TimedRound> rounds(static_cast<std::size_t>(std::max(c.repeats, 1)));
+    for (std::size_t r = 0; r < rounds.size(); ++r) {
+      if (r % 2 == 0) {
+        rounds[r].numerator = timedCullSeconds(*slow, input);
+        rounds[r].denominator = timedCullSeconds(*fast, input);
+      } else {
+        rounds[r].denominator = timedCullSeconds(*fast, input);
+        rounds[r].numerator = timedCullSeconds(*slow, input);
+      }
+    }
+    out.push_back(medianRound(std::move(rounds), c.key(), RatioKind::Speedup));
+  }
+  return out;
+}
+
+std::vector<RatioMeasurement> measureFloors(HeadlessGlContext& gl, CheckScenes& scenes,
+                                            const std::vector<FloorCase>& cases,
+                                            const std::vector<std::string>& strategies,
+                                            const StrategyRegistry& registry,
+                                            std::vector<std::string>& withoutFloor) {
+  std::vector<RatioMeasurement> out;
+  for (const auto& c : cases) {
+    const RecordedScene& recorded = scenes.get(c.scene);
+    for (const auto& name : strategies) {
+      std::vector<TimedRound> rounds;
+      bool glWork = true;
+      for (int round = 0; round < std::max(c.rounds, 1) && glWork; ++round) {
+        const FloorComparison f =
+            compareWithFloor(gl, recorded, name, c.resolution, c.frame, c.repeats, registry);
+        glWork = f.work.draws > 0 || f.work.queries > 0;
+        // A replay that answers differently did not do the strategy's work: no ratio to trust.
+        if (glWork && !f.answersMatch)
+          throw RunError(c.key(name) + ": the replayed GL work answered the queries differently");
+        rounds.push_back({f.strategyBestSeconds, f.floorBestSeconds});
+      }
+      if (!glWork) {
+        if (std::find(withoutFloor.begin(), withoutFloor.end(), name) == withoutFloor.end())
+          withoutFloor.push_back(name);
+        continue;
+      }
+      out.push_back(medianRound(std::move(rounds), c.key(name), RatioKind::OverFloor));
+    }
+  }
+  return out;
+}
+
+}  // namespace cdb

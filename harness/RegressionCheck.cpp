@@ -1,0 +1,228 @@
+#include "harness/RegressionCheck.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "harness/CheckBaseline.h"
+#include "harness/CheckScenes.h"
+#include "harness/MachineInfo.h"
+#include "render/HeadlessGlContext.h"
+
+#ifndef CDBENCH_SOURCE_DIR
+#define CDBENCH_SOURCE_DIR "."
+#endif
+
+namespace cdb {
+
+std::filesystem::path defaultBaselineFile() {
+  return std::filesystem::path(CDBENCH_SOURCE_DIR) / "results" / "baseline.json";
+}
+
+std::filesystem::path defaultConfigDir() { return std::filesystem::path(CDBENCH_SOURCE_DIR) / "configs"; }
+
+std::size_t CheckReport::correctnessFailures() const {
+  return static_cast<std::size_t>(std::count_if(correctness.begin(), correctness.end(),
+                                                [](const CorrectnessRow& r) { return !r.passed(); }));
+}
+
+std::size_t CheckReport::timingFailures() const {
+  return static_cast<std::size_t>(std::count_if(
+      timing.begin(), timing.end(), [](const TimingRow& r) { return r.status == RatioStatus::Fail; }));
+}
+
+namespace {
+
+using CheckClock = std::chrono::steady_clock;
+
+void reportStep(const CheckOptions& options, CheckClock::time_point start, const std::string& what) {
+  if (!options.progress) return;
+  std::fprintf(options.progress, "check: %5.1f s: %s\n",
+               std::chrono::duration<double>(CheckClock::now() - start).count(), what.c_str());
+  std::fflush(options.progress);
+}
+
+std::string describeBaseline(const CheckBaseline& b) {
+  return b.createdUtc + " on " + b.machine.value("cpu", std::string("?")) + " (" +
+         std::to_string(b.machine.value("logical_cores", 0)) + " cores), " + b.glRenderer + ", " +
+         b.buildType + " build";
+}
+
+// Compares every measured ratio with the baseline's, or marks why it is not compared.
+void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const MachineInfo& machine) {
+  std::string skipWhy;
+  if (baseline.glRenderer != report.glRenderer)
+    skipWhy = "the baseline was measured on the renderer '" + baseline.glRenderer + "', this run on '" +
+              report.glRenderer + "'";
+  else if (baseline.buildType != machine.buildType)
+    skipWhy = "the baseline was measured in a " + baseline.buildType + " build, this is a " +
+              machine.buildType + " build";
+  if (!skipWhy.empty()) {
+    report.notes.push_back("timing not compared: " + skipWhy +
+                           "; ratios of different renderers or builds are not comparable "
+                           "(record a baseline for this one with --update-baseline)");
+  } else if (baseline.machine.value("cpu", std::string()) != machine.cpuModel ||
+             baseline.machine.value("logical_cores", 0u) != machine.logicalCores) {
+    report.notes.push_back("the baseline was measured on another CPU (" + describeBaseline(baseline) +
+                           "); compared anyway: same renderer and build type");
+  }
+  std::vector<std::string> added;
+  for (auto& row : report.timing) {
+    const auto it = baseline.ratios.find(row.measured.key);
+    if (it == baseline.ratios.end()) {
+      row.status = RatioStatus::New;
+      added.push_back(row.measured.key);
+      continue;
+    }
+    row.baseline = it->second.value;
+    if (!skipWhy.empty()) {
+      row.status = RatioStatus::NotCompared;
+      continue;
+    }
+    const RatioVerdict v = judgeRatio(row.measured.kind, it->second.value, row.measured.value);
+    row.allowed = v.allowed;
+    row.status = v.passed ? RatioStatus::Pass : RatioStatus::Fail;
+  }
+  if (!added.empty())
+    report.notes.push_back(std::to_string(added.size()) +
+                           " ratio(s) not in the baseline, not compared (first: " + added.front() +
+                           "); record them with --update-baseline");
+  const auto stale = std::count_if(baseline.ratios.begin(), baseline.ratios.end(), [&](const auto& kv) {
+    return std::none_of(report.timing.begin(), report.timing.end(),
+                        [&](const TimingRow& t) { return t.measured.key == kv.first; });
+  });
+  if (stale > 0)
+    report.notes.push_back(std::to_string(stale) + " ratio(s) of the baseline not measured by this plan");
+}
+
+}  // namespace
+
+CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& plan,
+                               const StrategyRegistry& registry) {
+  const auto start = CheckClock::now();
+  CheckReport report;
+  report.baselineFile = options.baselineFile;
+  // Read first: a missing baseline is reported before a minute of measuring.
+  std::optional<CheckBaseline> baseline;
+  if (!options.updateBaseline) {
+    baseline = readCheckBaseline(options.baselineFile);
+    report.baselineDescription = describeBaseline(*baseline);
+  }
+  const std::vector<std::string> strategies = plan.strategies.empty() ? registry.names() : plan.strategies;
+  registry.validate(strategies);
+
+  HeadlessGlContext gl(parseGlPlatform(options.glPlatform));
+  report.glRenderer = gl.info().glRenderer;
+  CheckScenes scenes(options.configDir, options.assetDirs);
+
+  for (const auto& c : plan.correctness) {
+    reportStep(options, start, "correctness on " + c.scene.label());
+    auto rows = checkCorrectness(gl, scenes, {c}, strategies, registry);
+    report.correctness.insert(report.correctness.end(), rows.begin(), rows.end());
+  }
+  std::vector<RatioMeasurement> ratios;
+  for (const auto& c : plan.speedups) {
+    reportStep(options, start, "timing " + c.key());
+    auto m = measureSpeedups(gl, scenes, {c}, registry);
+    ratios.insert(ratios.end(), m.begin(), m.end());
+  }
+  std::vector<std::string> withoutFloor;
+  for (const auto& c : plan.floors) {
+    reportStep(options, start, "timing each strategy against its floor on " + c.scene.label());
+    auto m = measureFloors(gl, scenes, {c}, strategies, registry, withoutFloor);
+    ratios.insert(ratios.end(), m.begin(), m.end());
+  }
+  for (auto& m : ratios) report.timing.push_back({std::move(m), std::nullopt, std::nullopt, RatioStatus::New});
+  if (!withoutFloor.empty()) {
+    std::string names;
+    for (const auto& n : withoutFloor) names += (names.empty() ? "" : ", ") + n;
+    report.notes.push_back(names + ": no GL work, so no backend floor to compare with");
+  }
+
+  const MachineInfo machine = probeMachine();
+  if (baseline) {
+    judgeAgainst(report, *baseline, machine);
+  } else if (report.correctnessFailures() > 0) {
+    report.notes.push_back("baseline not written: the correctness part failed");
+  } else {
+    CheckBaseline b;
+    b.createdUtc = utcTimestamp();
+    b.glRenderer = report.glRenderer;
+    b.buildType = machine.buildType;
+    b.machine = toJson(machine);
+    b.gl = toJson(gl.info());
+    b.commandLine = options.commandLine;
+    for (auto& row : report.timing) {
+      b.ratios[row.measured.key] = row.measured;
+      row.status = RatioStatus::Recorded;
+    }
+    writeCheckBaseline(b, options.baselineFile);
+    report.baselineWritten = true;
+    report.baselineDescription = describeBaseline(b);
+  }
+  report.seconds = std::chrono::duration<double>(CheckClock::now() - start).count();
+  return report;
+}
+
+namespace {
+
+const char* ratioStatusText(RatioStatus s) {
+  switch (s) {
+    case RatioStatus::Pass: return "PASS";
+    case RatioStatus::Fail: return "FAIL";
+    case RatioStatus::NotCompared: return "not compared";
+    case RatioStatus::New: return "new";
+    case RatioStatus::Recorded: return "recorded";
+  }
+  return "";
+}
+
+}  // namespace
+
+void printCheckReport(const CheckReport& r, std::FILE* out) {
+  std::fprintf(out, "GL renderer: %s\n", r.glRenderer.c_str());
+  std::fprintf(out, "baseline:    %s%s (%s)\n", r.baselineFile.c_str(),
+               r.baselineWritten ? " written" : "", r.baselineDescription.c_str());
+
+  std::fprintf(out, "\ncorrectness: each strategy's colliding pairs against the ground truth's\n");
+  std::fprintf(out, "%-18s %5s  %-12s %4s %6s %6s %6s %6s %6s  %s\n", "scene", "frame", "strategy",
+               "res", "truth", "found", "missed", "extra", "split", "result");
+  for (const auto& c : r.correctness) {
+    const std::string res = c.resolution > 0 ? std::to_string(c.resolution) : "-";
+    std::fprintf(out, "%-18s %5d  %-12s %4s %6zu %6zu %6llu %6llu %6llu  %s\n", c.scene.c_str(),
+                 c.frame, c.strategy.c_str(), res.c_str(), c.truthPairs, c.foundPairs,
+                 static_cast<unsigned long long>(c.comparison.falseNegatives),
+                 static_cast<unsigned long long>(c.comparison.falsePositives),
+                 static_cast<unsigned long long>(c.comparison.cullingMisses),
+                 c.passed() ? "PASS" : (c.truthPairs == 0 ? "FAIL (no truth pair: vacuous frame)" : "FAIL"));
+  }
+  std::fprintf(out,
+               "  missed: truth pairs not found; extra: pairs found that the truth lacks; split: truth\n"
+               "  pairs pruned or split across sets before the exact phase; res -: a CPU peer (no image)\n");
+
+  std::fprintf(out,
+               "\ntiming: culling-time ratios measured in this process on the same frames, each the\n"
+               "median of its rounds' ratios (ms: the times of that round)\n");
+  std::fprintf(out, "%-52s %9s %19s %9s %10s  %s\n", "ratio", "measured", "(ms / ms)", "baseline",
+               "allowed", "result");
+  for (const auto& t : r.timing) {
+    char times[40], base[24] = "-", allowed[24] = "-";
+    std::snprintf(times, sizeof times, "(%.1f / %.1f)", t.measured.numeratorMs, t.measured.denominatorMs);
+    if (t.baseline) std::snprintf(base, sizeof base, "%.3f", *t.baseline);
+    if (t.allowed)
+      std::snprintf(allowed, sizeof allowed, "%s %.3f",
+                    t.measured.kind == RatioKind::Speedup ? ">=" : "<=", *t.allowed);
+    std::fprintf(out, "%-52s %9.3f %19s %9s %10s  %s\n", t.measured.key.c_str(), t.measured.value,
+                 times, base, allowed, ratioStatusText(t.status));
+  }
+  std::fprintf(out,
+               "  a/b: culling time of a over b's (higher: b faster), allowed >= baseline / %g;\n"
+               "  x/floor: x's culling time over its GL work replayed bare, allowed <= max(baseline * %g, %g)\n",
+               kSpeedupTolerance, kFloorTolerance, kFloorAllowedAtLeast);
+
+  for (const auto& n : r.notes) std::fprintf(out, "note: %s\n", n.c_str());
+  std::fprintf(out, "\ncheck: %s: %zu of %zu correctness rows and %zu of %zu ratios failed (%.1f s)\n",
+               r.passed() ? "PASS" : "FAIL", r.correctnessFailures(), r.correctness.size(),
+               r.timingFailures(), r.timing.size(), r.seconds);
+}
+
+}  // namespace cdb

@@ -1,0 +1,283 @@
+// The regression check catches what it is for: a strategy made 3x slower fails its timing part, a
+// strategy that prunes a touching object fails its correctness part, a frame without contacts
+// cannot pass, and ratios of another renderer are not held against the baseline. Each test runs
+// the check's own code (runRegressionCheck) on a small plan with a registry in which one strategy
+// is wrapped; the product binary has no hook for it. The full check against the committed
+// baseline runs as the ctest `cdbench_check` (tests/CMakeLists.txt).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <optional>
+#include <thread>
+
+#include "core/Errors.h"
+#include "culling/exact/GroundTruth.h"
+#include "harness/CheckBaseline.h"
+#include "harness/RegressionCheck.h"
+#include "tests/scenes/ScratchDir.h"
+#include "tests/scenes/TestAssets.h"
+
+namespace cdb {
+namespace {
+
+using Wrap = std::function<std::unique_ptr<CullingStrategy>(std::unique_ptr<CullingStrategy>)>;
+
+// The builtin strategies, with `target` wrapped by `wrap`.
+StrategyRegistry registryWith(const std::string& target, Wrap wrap) {
+  StrategyRegistry r;
+  const auto& builtin = StrategyRegistry::builtin();
+  for (const auto& name : builtin.names())
+    r.add(name, builtin.description(name),
+          [name, target, wrap](const StrategyOptions& o) -> std::unique_ptr<CullingStrategy> {
+            auto s = StrategyRegistry::builtin().create(name, o);
+            return name == target ? wrap(std::move(s)) : std::move(s);
+          });
+  return r;
+}
+
+class WrappedStrategy : public CullingStrategy {
+ public:
+  explicit WrappedStrategy(std::unique_ptr<CullingStrategy> inner) : inner_(std::move(inner)) {}
+  [[nodiscard]] std::string_view name() const override { return inner_->name(); }
+  void attach(const SceneGeometry& scene, VisibilityBackend& backend) override {
+    inner_->attach(scene, backend);
+  }
+
+ protected:
+  std::unique_ptr<CullingStrategy> inner_;
+};
+
+// Sleeps twice as long as the strategy culled: 3x its time, with no extra GL work, so that its
+// backend floor stays where it was.
+class ThreeTimesSlower final : public WrappedStrategy {
+ public:
+  using WrappedStrategy::WrappedStrategy;
+  [[nodiscard]] CullingResult cull(const FrameInput& frame) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    CullingResult r = inner_->cull(frame);
+    std::this_thread::sleep_for(2 * (std::chrono::steady_clock::now() - t0));
+    return r;
+  }
+};
+
+// Removes from every set the first object of a truly colliding pair (the ground truth's), as a
+// culling bug that prunes a touching object would.
+class DropsACollidingObject final : public WrappedStrategy {
+ public:
+  using WrappedStrategy::WrappedStrategy;
+  void attach(const SceneGeometry& scene, VisibilityBackend& backend) override {
+    truth_.emplace(scene);
+    inner_->attach(scene, backend);
+  }
+  [[nodiscard]] CullingResult cull(const FrameInput& frame) override {
+    CullingResult r = inner_->cull(frame);
+    const auto pairs = truth_->compute(frame.poses).collidingPairs;
+    if (!pairs.empty())
+      for (auto& set : r.sets)
+        std::erase_if(set.members, [&](const SetMember& m) { return m.object == pairs.front().a; });
+    return r;
+  }
+
+ private:
+  std::optional<GroundTruth> truth_;
+};
+
+// env3 at 20 tori, simulated up to its first frame with a colliding pair; that frame is found,
+// not assumed, so that the tests outlive a retuning of the config. Frame 0 has none (the tori
+// are placed apart).
+struct ContactScene {
+  CheckScene scene;
+  int contactFrame = -1;
+};
+
+const ContactScene& tori() {
+  static const ContactScene found = [] {
+    CheckScene spec{"env3.yaml", "tori", 20, 1, 150};
+    CheckScenes scenes(defaultConfigDir(), test::testAssetDirs());
+    const RecordedScene& r = scenes.get(spec);
+    const GroundTruth truth(r.scene);
+    for (std::uint32_t f = 0; f < r.recording.frameCount(); ++f) {
+      if (!truth.compute(r.recording.frame(f)).collidingPairs.empty()) {
+        spec.frames = static_cast<int>(f) + 1;
+        return ContactScene{spec, static_cast<int>(f)};
+      }
+    }
+    return ContactScene{spec, -1};
+  }();
+  return found;
+}
+
+CheckOptions optionsFor(const test::ScratchDir& dir) {
+  CheckOptions o;
+  o.baselineFile = dir.path() / "baseline.json";
+  o.assetDirs = test::testAssetDirs();
+  return o;
+}
+
+CheckPlan timingPlan() {
+  CheckPlan plan;
+  plan.strategies = {"cullide", "ours"};
+  plan.speedups = {{tori().scene, tori().contactFrame, 256, "cullide", "ours", 5}};
+  plan.floors = {{tori().scene, tori().contactFrame, 256, 3, 2}};
+  return plan;
+}
+
+const TimingRow* rowOf(const CheckReport& report, const std::string& key) {
+  for (const auto& t : report.timing)
+    if (t.measured.key == key) return &t;
+  return nullptr;
+}
+
+TEST(RegressionCheck, StrategyMadeThreeTimesSlowerFailsTheTiming) {
+  ASSERT_GE(tori().contactFrame, 0);
+  const test::ScratchDir dir;
+  CheckOptions options = optionsFor(dir);
+  const CheckPlan plan = timingPlan();
+  options.updateBaseline = true;
+  const CheckReport recorded = runRegressionCheck(options, plan);
+  ASSERT_TRUE(recorded.baselineWritten);
+  ASSERT_EQ(recorded.timing.size(), 3u);  // cullide/ours, cullide/floor, ours/floor
+
+  options.updateBaseline = false;
+  const CheckReport slowed = runRegressionCheck(
+      options, plan, registryWith("ours", [](auto s) { return std::make_unique<ThreeTimesSlower>(std::move(s)); }));
+  printCheckReport(slowed, stdout);
+  EXPECT_FALSE(slowed.passed());
+  EXPECT_EQ(slowed.correctnessFailures(), 0u);
+  for (const std::string& key : {plan.speedups[0].key(), plan.floors[0].key("ours")}) {
+    const TimingRow* row = rowOf(slowed, key);
+    ASSERT_NE(row, nullptr) << key;
+    EXPECT_EQ(row->status, RatioStatus::Fail) << key << ": " << row->measured.value;
+  }
+}
+
+TEST(RegressionCheck, StrategyDroppingACollidingObjectFailsTheCorrectness) {
+  ASSERT_GE(tori().contactFrame, 0);
+  const test::ScratchDir dir;
+  CheckOptions options = optionsFor(dir);
+  CheckPlan plan;
+  plan.strategies = {"cullide", "ours"};
+  plan.correctness = {{tori().scene, {tori().contactFrame}, {64, 256}}};
+  const auto faulty =
+      registryWith("ours", [](auto s) { return std::make_unique<DropsACollidingObject>(std::move(s)); });
+
+  // A failing correctness part never records a baseline.
+  options.updateBaseline = true;
+  const CheckReport refused = runRegressionCheck(options, plan, faulty);
+  EXPECT_FALSE(refused.passed());
+  EXPECT_FALSE(refused.baselineWritten);
+  EXPECT_FALSE(std::filesystem::exists(options.baselineFile));
+
+  ASSERT_TRUE(runRegressionCheck(options, plan).baselineWritten);
+  options.updateBaseline = false;
+  const CheckReport report = runRegressionCheck(options, plan, faulty);
+  printCheckReport(report, stdout);
+  EXPECT_FALSE(report.passed());
+  ASSERT_EQ(report.correctness.size(), 4u);
+  for (const auto& row : report.correctness) {
+    EXPECT_GT(row.truthPairs, 0u);
+    if (row.strategy == "ours") {
+      EXPECT_FALSE(row.passed());
+      EXPECT_GE(row.comparison.falseNegatives, 1u);
+      EXPECT_GE(row.comparison.cullingMisses, 1u);
+    } else {
+      EXPECT_TRUE(row.passed());
+    }
+  }
+}
+
+TEST(RegressionCheck, FrameWithoutContactsCannotPass) {
+  const test::ScratchDir dir;
+  CheckOptions options = optionsFor(dir);
+  options.updateBaseline = true;
+  CheckPlan plan;
+  plan.strategies = {"ours"};
+  plan.correctness = {{tori().scene, {0}, {64}}};
+  const CheckReport report = runRegressionCheck(options, plan);
+  ASSERT_EQ(report.correctness.size(), 1u);
+  EXPECT_EQ(report.correctness[0].truthPairs, 0u);
+  EXPECT_FALSE(report.passed());
+  EXPECT_FALSE(report.baselineWritten);
+}
+
+TEST(RegressionCheck, RatiosOfAnotherRendererAreNotCompared) {
+  ASSERT_GE(tori().contactFrame, 0);
+  const test::ScratchDir dir;
+  CheckOptions options = optionsFor(dir);
+  CheckPlan plan;
+  plan.strategies = {"cullide", "ours"};
+  plan.speedups = {{tori().scene, tori().contactFrame, 64, "cullide", "ours", 1}};
+  options.updateBaseline = true;
+  ASSERT_TRUE(runRegressionCheck(options, plan).baselineWritten);
+
+  // The same baseline, as if measured on a GPU where ours was ever so much faster.
+  CheckBaseline b = readCheckBaseline(options.baselineFile);
+  b.glRenderer = "Some GPU/PCIe/SSE2";
+  b.gl["renderer"] = b.glRenderer;
+  b.ratios.begin()->second.value = 1000.0;
+  writeCheckBaseline(b, options.baselineFile);
+
+  options.updateBaseline = false;
+  const CheckReport report = runRegressionCheck(options, plan);
+  ASSERT_EQ(report.timing.size(), 1u);
+  EXPECT_EQ(report.timing[0].status, RatioStatus::NotCompared);
+  EXPECT_TRUE(report.passed());
+  ASSERT_FALSE(report.notes.empty());
+  EXPECT_NE(report.notes[0].find("Some GPU"), std::string::npos) << report.notes[0];
+}
+
+TEST(RegressionCheck, MissingBaselineIsAnInputErrorSayingHowToRecordOne) {
+  CheckOptions options;
+  options.baselineFile = "/nonexistent/baseline.json";
+  try {
+    (void)runRegressionCheck(options, CheckPlan{});
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--update-baseline"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CheckBaselineRule, SpeedupFailsOnlyBelowBaselineOverTolerance) {
+  EXPECT_TRUE(judgeRatio(RatioKind::Speedup, 4.5, 4.5 / kSpeedupTolerance).passed);
+  EXPECT_TRUE(judgeRatio(RatioKind::Speedup, 4.5, 9.0).passed);
+  EXPECT_FALSE(judgeRatio(RatioKind::Speedup, 4.5, 4.5 / 3).passed);  // ours 3x slower
+  EXPECT_DOUBLE_EQ(judgeRatio(RatioKind::Speedup, 4.5, 1.0).allowed, 4.5 / kSpeedupTolerance);
+}
+
+TEST(CheckBaselineRule, FloorRatioFailsOnlyAboveItsAllowance) {
+  EXPECT_TRUE(judgeRatio(RatioKind::OverFloor, 1.0, kFloorAllowedAtLeast).passed);
+  EXPECT_FALSE(judgeRatio(RatioKind::OverFloor, 1.0, 3.0).passed);  // 3x slower, same GL work
+  EXPECT_TRUE(judgeRatio(RatioKind::OverFloor, 0.5, 0.9).passed);   // small baselines: the floor
+  EXPECT_DOUBLE_EQ(judgeRatio(RatioKind::OverFloor, 2.0, 1.0).allowed, 2.0 * kFloorTolerance);
+}
+
+TEST(CheckBaselineFile, RoundTripsAndRefusesOtherJson) {
+  const test::ScratchDir dir;
+  CheckBaseline b;
+  b.createdUtc = "2025-01-01T00:00:00Z";
+  b.glRenderer = "llvmpipe";
+  b.buildType = "Release";
+  b.machine = {{"cpu", "x"}, {"logical_cores", 2}, {"build_type", "Release"}};
+  b.gl = {{"renderer", "llvmpipe"}};
+  b.commandLine = {"cdbench", "check", "--update-baseline"};
+  b.ratios["cullide/ours x"] = {"cullide/ours x", RatioKind::Speedup, 4.25, 500.0, 117.6};
+  b.ratios["ours/floor x"] = {"ours/floor x", RatioKind::OverFloor, 1.02, 51.0, 50.0};
+  const auto file = dir.path() / "b.json";
+  writeCheckBaseline(b, file);
+  const CheckBaseline back = readCheckBaseline(file);
+  EXPECT_EQ(back.glRenderer, "llvmpipe");
+  EXPECT_EQ(back.buildType, "Release");
+  EXPECT_EQ(back.commandLine, b.commandLine);
+  ASSERT_EQ(back.ratios.size(), 2u);
+  EXPECT_EQ(back.ratios.at("cullide/ours x").kind, RatioKind::Speedup);
+  EXPECT_DOUBLE_EQ(back.ratios.at("cullide/ours x").value, 4.25);
+  EXPECT_EQ(back.ratios.at("ours/floor x").kind, RatioKind::OverFloor);
+
+  EXPECT_THROW((void)readCheckBaseline(dir.write("other.json", "{\"frames\": 3}")), InputError);
+  EXPECT_THROW((void)readCheckBaseline(dir.write("broken.json", "{\"format\": 1,")), InputError);
+}
+
+}  // namespace
+}  // namespace cdb
