@@ -5,11 +5,10 @@
 #   scripts/reproduce.sh [quick|full]
 #
 # quick (default): every resolution (500..1200) and object count (50..200) of the thesis, the
-#   thesis' three strategies, one simulation per cell group, and two frames of each simulation
-#   (--frame-stride 150: frame 0 and frame 150, when env1's and env2's bodies have piled up):
-#   about 15 minutes on 2 cores with llvmpipe. On env2, CULLIDE without a hierarchy is left out
-#   of quick: its triangle level issues about 3 million occlusion queries per frame at rest, about
-#   two minutes a frame on llvmpipe (run `full`, or on a GPU).
+#   thesis' three strategies, one simulation per cell group, and a few frames of each simulation:
+#   env1 and env2 frame 0 and frame 150 (--frame-stride 150: the drop, and the settled pile),
+#   env3 frames 0, 75, 150 and 225. Within 15 minutes on 2 cores with llvmpipe, build included.
+#   Most of it is CULLIDE on env2's settled dragons: about 3 million occlusion queries a frame.
 # full: the thesis' protocol: 10 repeats, every frame of every simulation (hours on llvmpipe;
 #   see README "Beyond one machine" to split it into shards).
 # A stopped run resumes where it stopped when the same command is run again.
@@ -22,8 +21,8 @@ strategies=${CDBENCH_STRATEGIES:-cullide,cullide_bvh,ours}
 case "$profile" in
   quick)
     env1=(--repeats 1 --frame-stride 150 --strategies "$strategies")
-    env2=(--repeats 1 --frame-stride 150 --strategies "${CDBENCH_ENV2_STRATEGIES:-cullide_bvh,ours}")
-    env3=(--repeats 1 --frame-stride 150 --strategies "$strategies")
+    env2=(--repeats 1 --frame-stride 150 --strategies "$strategies")
+    env3=(--repeats 1 --frame-stride 75 --strategies "$strategies")
     ;;
   full)
     env1=(--strategies "$strategies")
