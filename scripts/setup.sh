@@ -9,6 +9,7 @@ packages=(
   libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri
   libfcl-dev libbullet-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libbenchmark-tools python3-scipy  # Google Benchmark's tools/compare.py (scripts/bench.sh)
   clang libclang-rt-14-dev
   python3 python3-matplotlib parallel
 )

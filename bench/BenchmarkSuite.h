@@ -1,0 +1,68 @@
+#pragma once
+// The micro-benchmarks of cdbench_bench and what they share. Names (Google Benchmark's
+// --benchmark_filter takes a regular expression over them):
+//
+//   cull/<env>/<strategy>/res:<r>/real_time   a strategy's cull() of the environment's frame
+//   floor/<env>/<strategy>/res:<r>/real_time  that cull's GL work replayed bare (image-based)
+//   exact/<env>/ours_sets                     the exact phase on the sets `ours` leaves (800)
+//   exact/<env>/all_objects                   the exact phase on one set of every object
+//   bvh_build/<mesh>/<env>                    one OBB tree build under the env's tree options
+//
+// for env1, env2, env3 (RecordedFrames.h says which frame) and r = 256, 800; each file's head
+// says what its benchmarks measure. Times are milliseconds per iteration; counters are per
+// iteration. The GL benchmarks are timed on the wall clock (Google Benchmark then appends
+// /real_time to their names): GL work runs asynchronously, on llvmpipe in its own threads, so the
+// calling thread's CPU time misses most of it. Google Benchmark's default --benchmark_min_time
+// (0.5 s) keeps a heavy cell to one iteration: a cull of env2 by CULLIDE takes minutes.
+#include <exception>
+#include <string_view>
+
+#include <benchmark/benchmark.h>
+
+#include "bench/RecordedFrames.h"
+#include "culling/StrategyRegistry.h"
+#include "culling/visibility/VisibilityBackend.h"
+
+namespace cdb::bench {
+
+inline constexpr int kResolutions[] = {256, 800};
+
+// The strategies that decide collisions on the CPU and issue no GL work: they have no floor, and
+// their cull() is their whole collision detection.
+[[nodiscard]] inline bool isCpuPeer(std::string_view strategy) {
+  return strategy == "fcl" || strategy == "bullet" || strategy == "ode";
+}
+
+[[nodiscard]] inline StrategyOptions strategyOptions(const ScenarioConfig& config, int resolution) {
+  StrategyOptions options;
+  options.resolution = resolution;
+  options.culling = config.culling;
+  return options;
+}
+
+[[nodiscard]] inline VisibilityOptions visibilityOptions(const ScenarioConfig& config) {
+  return {config.culling.conservative, config.culling.rawDepthOffset};
+}
+
+// Runs `body`, turning an exception (a missing dragon, no GL) into a skipped benchmark that
+// carries its message, so that one unavailable environment does not stop the suite.
+template <class Body>
+void skipOnError(benchmark::State& state, Body&& body) {
+  try {
+    body();
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+  }
+}
+
+// Per-iteration counters: the sum over the iterations, divided by their number when reported.
+[[nodiscard]] inline benchmark::Counter perIteration(double total) {
+  return benchmark::Counter(total, benchmark::Counter::kAvgIterations);
+}
+
+void registerCullBenchmarks(RecordedFrames& frames);
+void registerFloorBenchmarks(RecordedFrames& frames);
+void registerExactPhaseBenchmarks(RecordedFrames& frames);
+void registerBvhBuildBenchmarks(RecordedFrames& frames);
+
+}  // namespace cdb::bench

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Builds cdbench_bench (release preset, build/) and runs the micro-benchmarks, writing Google
+# Benchmark's JSON, which its tools/compare.py reads.
+#
+#   scripts/bench.sh [OUT.json] [cdbench_bench or Google Benchmark flags...]
+#
+# OUT.json defaults to results/bench/<UTC time>-<commit>.json. Examples:
+#   scripts/bench.sh                                       # the whole suite (20-30 min, llvmpipe)
+#   scripts/bench.sh /tmp/bvh.json --benchmark_filter='^bvh_build/'
+#   scripts/bench.sh --benchmark_filter='/env3/' --benchmark_repetitions=5
+# Two runs compared, and each strategy against its floor within one run (compare.py needs
+# Debian's libbenchmark-tools and python3-scipy, which scripts/setup.sh installs, and the system
+# python3):
+#   /usr/bin/python3 /usr/share/benchmark/compare.py benchmarks A.json B.json
+#   /usr/bin/python3 /usr/share/benchmark/compare.py benchmarksfiltered A.json '^floor/' A.json '^cull/'
+# env2 needs CDBENCH_ASSETS naming a folder with dragon_vrip_res3 (or scripts/fetch-assets.sh);
+# without it env2's benchmarks are skipped with that message and the others run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=""
+if [[ $# -gt 0 && "$1" != -* ]]; then
+  out=$1
+  shift
+fi
+if [[ -z "$out" ]]; then
+  commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+  out=results/bench/$(date -u +%Y%m%dT%H%M%SZ)-$commit.json
+fi
+mkdir -p "$(dirname "$out")"
+bash scripts/setup.sh
+CDBENCH_BUILD_TARGETS=cdbench_bench bash scripts/build.sh release
+start=$SECONDS
+build/cdbench_bench --benchmark_out="$out" --benchmark_out_format=json "$@"
+echo "bench: wrote $out in $((SECONDS - start)) s" >&2

@@ -1,0 +1,102 @@
+// cdbench_bench end to end on a cheap selection: the torus' BVH build and env3 at 256 x 256 with
+// 20 tori at frame 30 (cull, floor, exact phase of `ours`). The JSON file it writes parses, holds
+// the fields Google Benchmark's tools/compare.py reads, and carries the suite's counters.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct Result {
+  int exitCode = -1;
+  std::string output;
+};
+
+Result runBench(const std::string& args) {
+  const std::string cmd = std::string(CDBENCH_BINARY_DIR) + "/cdbench_bench " + args + " 2>&1";
+  Result r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  std::array<char, 512> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
+  const int status = ::pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::filesystem::path scratchFile(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "cdbench_bench_test";
+  std::filesystem::create_directories(dir);
+  const auto file = dir / name;
+  std::filesystem::remove(file);
+  return file;
+}
+
+TEST(MicroBenchmarks, CheapSelectionWritesJsonWithCounters) {
+  const auto out = scratchFile("cheap.json");
+  const std::string filter =
+      "^(bvh_build/torus/env1|exact/env3/ours_sets|(cull|floor)/env3/ours/res:256/real_time)$";
+  const Result r = runBench(
+      "--objects env3=20 --frame env3=30 --benchmark_min_time=0.05 "
+      "--benchmark_filter='" +
+      filter + "' --benchmark_out=" + out.string() + " --benchmark_out_format=json");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream file(out);
+  ASSERT_TRUE(file) << r.output;
+  const nlohmann::json json = nlohmann::json::parse(file);
+
+  EXPECT_NE(json["context"]["cdbench_env3"].get<std::string>().find("frame 30"), std::string::npos);
+  EXPECT_FALSE(json["context"]["cdbench_gl"].get<std::string>().empty());
+
+  std::map<std::string, nlohmann::json> byName;
+  for (const auto& b : json["benchmarks"]) {
+    // What compare.py reads of every run.
+    for (const char* field :
+         {"name", "run_name", "run_type", "iterations", "real_time", "cpu_time", "time_unit"})
+      EXPECT_TRUE(b.contains(field)) << b.dump();
+    EXPECT_FALSE(b.value("error_occurred", false)) << b.dump();
+    EXPECT_EQ(b["run_type"], "iteration");
+    EXPECT_GE(b["iterations"].get<long>(), 1);
+    byName[b["name"].get<std::string>()] = b;
+  }
+  ASSERT_EQ(byName.size(), 4u) << json.dump(1);
+
+  const auto& cull = byName.at("cull/env3/ours/res:256/real_time");
+  EXPECT_EQ(cull["time_unit"], "ms");
+  for (const char* counter :
+       {"queries", "draws", "triangles", "sets", "pcs_objects", "pcs_triangles"})
+    EXPECT_TRUE(cull.contains(counter)) << counter;
+  EXPECT_GT(cull["queries"].get<double>(), 0.0);
+  EXPECT_GT(cull["triangles"].get<double>(), 0.0);
+
+  // The floor replays exactly the work of one such cull.
+  const auto& floor = byName.at("floor/env3/ours/res:256/real_time");
+  EXPECT_EQ(floor["queries"].get<double>(), cull["queries"].get<double>());
+  EXPECT_EQ(floor["draws"].get<double>(), cull["draws"].get<double>());
+  EXPECT_EQ(floor["triangles"].get<double>(), cull["triangles"].get<double>());
+  EXPECT_GT(floor["real_time"].get<double>(), 0.0);
+
+  const auto& exact = byName.at("exact/env3/ours_sets");
+  for (const char* counter : {"pairs_tested", "triangle_tests", "colliding_pairs", "sets"})
+    EXPECT_TRUE(exact.contains(counter)) << counter;
+
+  const auto& bvh = byName.at("bvh_build/torus/env1");
+  EXPECT_EQ(bvh["triangles"].get<double>(), 800.0);
+  EXPECT_GT(bvh["nodes"].get<double>(), 1.0);
+  EXPECT_GT(bvh["levels"].get<double>(), 1.0);
+}
+
+TEST(MicroBenchmarks, BadOverrideExitsTwo) {
+  const Result r = runBench("--objects env9=20 --benchmark_filter=none");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("env9"), std::string::npos) << r.output;
+}
+
+}  // namespace
