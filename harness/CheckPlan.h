@@ -44,15 +44,13 @@ struct SpeedupCase {
 };
 
 // Every strategy that issues GL work against its backend floor (harness/FloorComparison.h) on one
-// frame: its culling time divided by the same GL work replayed bare. compareWithFloor times the
-// strategy's `repeats` culls, then the replay's, and each side's best time makes one round's
-// ratio; the median of `rounds` rounds drops a round in which load fell on one block only.
+// frame: its culling time divided by the same GL work replayed bare, the two alternating for
+// `rounds` rounds, the median of the rounds' ratios (CheckTiming.h).
 struct FloorCase {
   CheckScene scene;
   int frame = 0;
   int resolution = 800;
-  int rounds = 3;
-  int repeats = 3;
+  int rounds = 7;
 
   [[nodiscard]] std::string key(const std::string& strategy) const;  // "ours/floor env3 ..."
 };

@@ -4,7 +4,9 @@
 #include <chrono>
 
 #include "core/Errors.h"
+#include "culling/visibility/GlDrawFloor.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/RecordingBackend.h"
 #include "harness/BackendWarmUp.h"
 #include "harness/FloorComparison.h"
 
@@ -16,6 +18,13 @@ double timedCullSeconds(CullingStrategy& strategy, const FrameInput& input) {
   const auto t0 = std::chrono::steady_clock::now();
   (void)strategy.cull(input);
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::span<const Pose> framePoses(const RecordedScene& recorded, int frame, const std::string& scene) {
+  if (frame < 0 || static_cast<std::uint32_t>(frame) >= recorded.recording.frameCount())
+    throw InputError(scene + ": frame " + std::to_string(frame) + " out of the " +
+                     std::to_string(recorded.recording.frameCount()) + " simulated");
+  return recorded.recording.frame(static_cast<std::uint32_t>(frame));
 }
 
 struct TimedRound {
@@ -39,10 +48,7 @@ std::vector<RatioMeasurement> measureSpeedups(HeadlessGlContext& gl, CheckScenes
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
-    if (c.frame < 0 || static_cast<std::uint32_t>(c.frame) >= recorded.recording.frameCount())
-      throw InputError(c.key() + ": frame out of the " +
-                       std::to_string(recorded.recording.frameCount()) + " simulated");
-    const auto poses = recorded.recording.frame(static_cast<std::uint32_t>(c.frame));
+    const auto poses = framePoses(recorded, c.frame, c.scene.label());
     GlOcclusionQueryBackend backend(
         gl, {recorded.config.culling.conservative, recorded.config.culling.rawDepthOffset});
     backend.attachScene(recorded.scene);
@@ -80,22 +86,49 @@ std::vector<RatioMeasurement> measureFloors(HeadlessGlContext& gl, CheckScenes& 
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
+    const FrameInput input{framePoses(recorded, c.frame, c.scene.label()), c.frame};
+    const VisibilityOptions visibility{recorded.config.culling.conservative,
+                                       recorded.config.culling.rawDepthOffset};
+    StrategyOptions options;
+    options.resolution = c.resolution;
+    options.culling = recorded.config.culling;
     for (const auto& name : strategies) {
-      std::vector<TimedRound> rounds;
-      bool glWork = true;
-      for (int round = 0; round < std::max(c.rounds, 1) && glWork; ++round) {
-        const FloorComparison f =
-            compareWithFloor(gl, recorded, name, c.resolution, c.frame, c.repeats, registry);
-        glWork = f.work.draws > 0 || f.work.queries > 0;
-        // A replay that answers differently did not do the strategy's work: no ratio to trust.
-        if (glWork && !f.answersMatch)
-          throw RunError(c.key(name) + ": the replayed GL work answered the queries differently");
-        rounds.push_back({f.strategyBestSeconds, f.floorBestSeconds});
-      }
-      if (!glWork) {
+      GlOcclusionQueryBackend backend(gl, visibility);
+      backend.attachScene(recorded.scene);
+      warmUpBackend(backend, recorded.scene, input.poses, c.resolution);
+      RecordingBackend recorder(backend);
+      const VisibilityCounters work =
+          recordCullWork(recorder, recorded, name, c.resolution, c.frame, registry);
+      if (work.draws == 0 && work.queries == 0) {
         if (std::find(withoutFloor.begin(), withoutFloor.end(), name) == withoutFloor.end())
           withoutFloor.push_back(name);
         continue;
+      }
+      // The strategy on the bare backend, with the recorded cull's history.
+      auto strategy = registry.create(name, options);
+      strategy->attach(recorded.scene, backend);
+      (void)strategy->cull(input);
+      GlDrawFloor floor(gl, visibility);
+      GlDrawFloor::Prepared replay = floor.prepare(recorder.ops());
+      floor.replayOnce(replay);  // compiles the floor's shader variants
+      const auto replaySeconds = [&] {
+        const auto t0 = std::chrono::steady_clock::now();
+        floor.replayOnce(replay);
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        // A replay that answers differently did not do the strategy's work: no ratio to trust.
+        if (!replay.answersMatch())
+          throw RunError(c.key(name) + ": the replayed GL work answered the queries differently");
+        return s;
+      };
+      std::vector<TimedRound> rounds(static_cast<std::size_t>(std::max(c.rounds, 1)));
+      for (std::size_t r = 0; r < rounds.size(); ++r) {
+        if (r % 2 == 0) {
+          rounds[r].numerator = timedCullSeconds(*strategy, input);
+          rounds[r].denominator = replaySeconds();
+        } else {
+          rounds[r].denominator = replaySeconds();
+          rounds[r].numerator = timedCullSeconds(*strategy, input);
+        }
       }
       out.push_back(medianRound(std::move(rounds), c.key(name), RatioKind::OverFloor));
     }

@@ -34,9 +34,10 @@ struct RatioMeasurement {
                                                             const std::vector<SpeedupCase>& cases,
                                                             const StrategyRegistry& registry);
 
-// Each floor case for each of `strategies` that issues GL work: `rounds` rounds of
-// compareWithFloor, each one's ratio of best times. A strategy that issues no GL work (a CPU
-// peer) has no floor and no measurement: its name is added to `withoutFloor` (once) instead.
+// Each floor case for each of `strategies` that issues GL work: its work recorded from one cull
+// (recordCullWork) and prepared for replay, one untimed cull and replay, then `rounds` rounds of
+// one cull and one replay, the order alternating. A strategy that issues no GL work (a CPU peer)
+// has no floor and no measurement: its name is added to `withoutFloor` (once) instead.
 [[nodiscard]] std::vector<RatioMeasurement> measureFloors(HeadlessGlContext& gl, CheckScenes& scenes,
                                                           const std::vector<FloorCase>& cases,
                                                           const std::vector<std::string>& strategies,

@@ -120,7 +120,7 @@ CheckPlan timingPlan() {
   CheckPlan plan;
   plan.strategies = {"cullide", "ours"};
   plan.speedups = {{tori().scene, tori().contactFrame, 256, "cullide", "ours", 5}};
-  plan.floors = {{tori().scene, tori().contactFrame, 256, 3, 2}};
+  plan.floors = {{tori().scene, tori().contactFrame, 256, 5}};
   return plan;
 }
 
