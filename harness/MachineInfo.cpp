@@ -66,7 +66,11 @@ MachineInfo probeMachine() {
   m.gitCommit = commandOutput("git -C '" + dir + "' rev-parse HEAD 2>/dev/null");
   if (m.gitCommit.empty()) {
     m.gitCommit = "unknown";
-  } else if (!commandOutput("git -C '" + dir + "' status --porcelain --untracked-files=no 2>/dev/null").empty()) {
+  } else if (!commandOutput("git -C '" + dir +
+                           "' status --porcelain --untracked-files=no -- . ':(exclude)results' 2>/dev/null")
+                  .empty()) {
+    // Result files a run writes into results/ (the quick reproduction's, for one) do not make the
+    // code that measured differ from the commit.
     m.gitCommit += "+dirty";
   }
   return m;

@@ -2,10 +2,7 @@
 // 20 tori at frame 30 (cull, floor, exact phase of `ours`). The JSON file it writes parses, holds
 // the fields Google Benchmark's tools/compare.py reads, and carries the suite's counters.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -13,22 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/common/ShellCommand.h"
+
 namespace {
 
-struct Result {
-  int exitCode = -1;
-  std::string output;
-};
-
-Result runBench(const std::string& args) {
-  const std::string cmd = std::string(CDBENCH_BINARY_DIR) + "/cdbench_bench " + args + " 2>&1";
-  Result r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::array<char, 512> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-  const int status = ::pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+cdb::test::CommandResult runBench(const std::string& args) {
+  return cdb::test::runShellCommand(std::string(CDBENCH_BINARY_DIR) + "/cdbench_bench " + args +
+                                    " 2>&1");
 }
 
 std::filesystem::path scratchFile(const std::string& name) {
@@ -43,7 +31,7 @@ TEST(MicroBenchmarks, CheapSelectionWritesJsonWithCounters) {
   const auto out = scratchFile("cheap.json");
   const std::string filter =
       "^(bvh_build/torus/env1|exact/env3/ours_sets|(cull|floor)/env3/ours/res:256/real_time)$";
-  const Result r = runBench(
+  const auto r = runBench(
       "--objects env3=20 --frame env3=30 --benchmark_min_time=0.05 "
       "--benchmark_filter='" +
       filter + "' --benchmark_out=" + out.string() + " --benchmark_out_format=json");
@@ -94,7 +82,7 @@ TEST(MicroBenchmarks, CheapSelectionWritesJsonWithCounters) {
 }
 
 TEST(MicroBenchmarks, BadOverrideExitsTwo) {
-  const Result r = runBench("--objects env9=20 --benchmark_filter=none");
+  const auto r = runBench("--objects env9=20 --benchmark_filter=none");
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("env9"), std::string::npos) << r.output;
 }

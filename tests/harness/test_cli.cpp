@@ -2,8 +2,6 @@
 // bad input exits 2 with one line.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -12,23 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/FrameCsv.h"
+#include "tests/common/ShellCommand.h"
 
 namespace {
 
-struct Result {
-  int exitCode = -1;
-  std::string output;
-};
-
-Result runCdbench(const std::string& args) {
-  const std::string cmd = std::string(CDBENCH_BINARY_DIR) + "/cdbench " + args + " 2>&1";
-  Result r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::array<char, 512> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-  const int status = ::pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+cdb::test::CommandResult runCdbench(const std::string& args) {
+  return cdb::test::runShellCommand(std::string(CDBENCH_BINARY_DIR) + "/cdbench " + args + " 2>&1");
 }
 
 std::filesystem::path tempDir(const std::string& name) {
