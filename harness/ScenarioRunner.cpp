@@ -269,9 +269,8 @@ RunSummary runScenario(const RunOptions& options) {
       r.trianglesDrawn = culled.counters.visibility.trianglesDrawn;
       if (truth) {
         const ScopedSeconds timed(time.truthSeconds);
-        auto cmp = compareWithTruth(truthPairs[f], report.collidingPairs, culled.sets,
-                                    scene->objectCount());
-        if (decidedByStrategy) cmp.cullingMisses = cmp.falseNegatives;  // no sets to split
+        const auto cmp =
+            compareWithTruth(truthPairs[f], report.collidingPairs, culled, scene->objectCount());
         r.truthPairs = truthPairs[f].size();
         r.falseNegatives = cmp.falseNegatives;
         r.falsePositives = cmp.falsePositives;

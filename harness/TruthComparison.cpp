@@ -30,4 +30,12 @@ TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
   return c;
 }
 
+TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
+                                 const std::vector<ObjectPair>& found, const CullingResult& culled,
+                                 std::size_t objectCount) {
+  TruthComparison c = compareWithTruth(truth, found, culled.sets, objectCount);
+  if (culled.decided) c.cullingMisses = c.falseNegatives;
+  return c;
+}
+
 }  // namespace cdb

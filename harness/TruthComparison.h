@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "culling/CullingStrategy.h"
 #include "culling/PotentiallyCollidingSets.h"
 #include "culling/exact/ObjectPair.h"
 
@@ -19,5 +20,12 @@ struct TruthComparison {
                                                const std::vector<ObjectPair>& found,
                                                const PotentiallyCollidingSets& sets,
                                                std::size_t objectCount);
+
+// The same for a cull's result. A strategy that decided the pairs itself (a CPU peer) leaves no
+// sets, so every pair it misses is a culling miss too. `culled.decided` may have been moved from:
+// only whether it is set matters.
+[[nodiscard]] TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
+                                               const std::vector<ObjectPair>& found,
+                                               const CullingResult& culled, std::size_t objectCount);
 
 }  // namespace cdb

@@ -83,5 +83,22 @@ TEST(TruthComparison, CountsMissesSplitsAndExtras) {
   EXPECT_EQ(c.cullingMisses, 2u);
 }
 
+TEST(TruthComparison, AStrategyThatDecidesThePairsMissesInCullingWhatItMisses) {
+  const std::vector<ObjectPair> truth = {{0, 1}, {2, 3}, {4, 5}};
+  CullingResult peer;
+  peer.decided = CollisionReport{};
+  peer.decided->collidingPairs = {{0, 1}};
+  const auto c = compareWithTruth(truth, peer.decided->collidingPairs, peer, 6);
+  EXPECT_EQ(c.falseNegatives, 2u);
+  EXPECT_EQ(c.cullingMisses, 2u);  // no sets: without the rule, every truth pair would count
+
+  CullingResult imageBased;
+  imageBased.sets.resize(1);
+  imageBased.sets[0].members = {{0, {}}, {1, {}}, {2, {}}, {3, {}}, {4, {}}, {5, {}}};
+  const auto d = compareWithTruth(truth, {{0, 1}}, imageBased, 6);
+  EXPECT_EQ(d.falseNegatives, 2u);
+  EXPECT_EQ(d.cullingMisses, 0u);  // every pair was left together for the exact phase
+}
+
 }  // namespace
 }  // namespace cdb
