@@ -29,7 +29,7 @@ std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend, const S
                                              std::vector<SetMember> ordered, const PassPair& passes,
                                              std::vector<std::uint8_t>& answers) {
   const auto drawMember = [&](const SetMember& m) {
-    for (std::uint32_t t : m.triangles) backend.queryRange({m.object, t, 1});
+    backend.queryTriangles(m.object, m.triangles);
     if (m.triangles.size() == scene.meshOf(m.object).triangleCount())
       backend.writeRange(wholeMesh(scene, m.object));
     else

@@ -34,7 +34,7 @@ struct PassPair {
                                                         const PassPair& passes,
                                                         std::vector<std::uint8_t>& answers);
 
-// Triangle level: one query per triangle; `ordered` (pass 1's order, triangle lists explicit) is
+// Triangle level: one query per triangle, a member's triangles in one batch; `ordered` (pass 1's order, triangle lists explicit) is
 // consumed. An object's own triangles are all tested before it is drawn, so an object never
 // occludes itself. Returns the members with the triangles left, in pass-1 order, dropping members
 // left with none.

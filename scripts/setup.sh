@@ -8,6 +8,7 @@ packages=(
   libode-dev libeigen3-dev libassimp-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libgmp-dev
   libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri
   libfcl-dev libbullet-dev
+  libhwy-dev libtbb-dev  # the CPU visibility backend: SIMD with runtime dispatch, worker threads
   libgtest-dev libgmock-dev libbenchmark-dev
   libbenchmark-tools python3-scipy  # Google Benchmark's tools/compare.py (scripts/bench.sh)
   clang libclang-rt-14-dev

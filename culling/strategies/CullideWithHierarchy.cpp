@@ -32,13 +32,13 @@ void CullideWithHierarchy::pruneAlong(std::vector<ObjectId>& objects, int axis,
   std::vector<QueryIndex> first2(objects.size());
   backend_->beginPass(view, DepthUse::Fresh);
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    first1[i] = queryNodes(*backend_, frontier_, objects[i]);
-    writeNodes(*backend_, frontier_, objects[i]);
+    first1[i] = queryNodes(*backend_, frontier_, objects[i], boxes_);
+    writeNodes(*backend_, frontier_, objects[i], boxes_);
   }
   backend_->beginPass(view, DepthUse::Fresh);
   for (std::size_t i = objects.size(); i-- > 0;) {
-    first2[i] = queryNodes(*backend_, frontier_, objects[i]);
-    writeNodes(*backend_, frontier_, objects[i]);
+    first2[i] = queryNodes(*backend_, frontier_, objects[i], boxes_);
+    writeNodes(*backend_, frontier_, objects[i], boxes_);
   }
   backend_->fetchResults(visible_);
 

@@ -35,6 +35,7 @@ class CullideWithHierarchy final : public CullingStrategy {
   SceneHierarchies hierarchies_;
   NodeFrontier frontier_;
   std::vector<std::uint8_t> visible_;  // query answers, reused across frames
+  std::vector<OrientedBox> boxes_;     // one object's node boxes, for a batch
   std::vector<std::uint8_t> keep_;     // per active node of one object
 };
 

@@ -129,22 +129,32 @@ void HierarchicalCollisionIndependentSets::drawSet(SetRun& run, std::uint32_t le
       const std::uint32_t slot = slotAt(k);
       const ObjectId o = run.objects[slot];
       const auto nodes = frontier_.nodes(o);
-      // Every node queried before any is written: an object does not occlude itself.
+      // Every node queried before any is written, in one batch: an object does not occlude
+      // itself.
+      batchBoxes_.clear();
+      batchNodes_.clear();
       for (std::size_t j = 0; j < nodes.size(); ++j) {
-        const auto d = depthOf(pass, run.nodeIntervals[run.firstNode[slot] + j]);
-        if (d.second >= earlierNear && d.first <= earlierFar)
-          run.query[pass][run.firstNode[slot] + j] =
-              backend_->queryBox(o, frontier_.box(o, nodes[j]));
-        else
+        const std::size_t at = run.firstNode[slot] + j;
+        const auto d = depthOf(pass, run.nodeIntervals[at]);
+        if (d.second >= earlierNear && d.first <= earlierFar) {
+          batchBoxes_.push_back(frontier_.box(o, nodes[j]));
+          batchNodes_.push_back(at);
+        } else {
           ++stats_.queriesSkipped;
+        }
       }
+      const QueryIndex first = backend_->queryBoxes(o, batchBoxes_);
+      for (std::size_t i = 0; i < batchNodes_.size(); ++i)
+        run.query[pass][batchNodes_[i]] = first + static_cast<QueryIndex>(i);
+      batchBoxes_.clear();
       for (std::size_t j = 0; j < nodes.size(); ++j) {
         const auto d = depthOf(pass, run.nodeIntervals[run.firstNode[slot] + j]);
         if (d.second >= laterNear_[k] && d.first <= laterFar_[k])
-          backend_->writeBox(o, frontier_.box(o, nodes[j]));
+          batchBoxes_.push_back(frontier_.box(o, nodes[j]));
         else
           ++stats_.writesSkipped;
       }
+      backend_->writeBoxes(o, batchBoxes_);
       const auto d = depthOf(pass, intervals_[slot]);
       earlierNear = std::min(earlierNear, d.first);
       earlierFar = std::max(earlierFar, d.second);

@@ -107,6 +107,8 @@ class HierarchicalCollisionIndependentSets final : public CullingStrategy {
   std::vector<std::pair<double, double>> intervals_;  // per slot of the set being drawn
   std::vector<double> laterNear_;                     // per position in a pass
   std::vector<double> laterFar_;
+  std::vector<OrientedBox> batchBoxes_;  // one object's boxes queried (or written) at once
+  std::vector<std::size_t> batchNodes_;  // where each queried box's answer goes
 };
 
 }  // namespace cdb

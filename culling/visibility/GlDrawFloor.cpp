@@ -55,9 +55,45 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
 
   using K = RecordedOp::Kind;
   using C = Command::Kind;
+  const auto push = [&p](const Command& c) {
+    if (c.kind == C::Query) ++p.queries;
+    if ((c.kind == C::Query || c.kind == C::Write) && c.count > 0) ++p.draws;
+    if (c.kind == C::WriteRuns && !p.runs[c.payload].empty()) ++p.draws;
+    p.commands.push_back(c);
+  };
+  // A batch becomes the single draws that this backend issues for it: one query per piece.
+  const auto pushBox = [&](C kind, ObjectId object, const OrientedBox& box) {
+    Command c;
+    c.kind = kind, c.object = object, c.slot = buffers.cube();
+    (void)slotOf(object);
+    c.count = c.slot.triangleCount;
+    c.local = static_cast<int>(p.locals.size());
+    p.locals.push_back(boxMatrix(box));
+    push(c);
+  };
+  const auto pushTriangle = [&](ObjectId object, std::uint32_t triangle) {
+    Command c;
+    c.kind = C::Query, c.object = object, c.slot = slotOf(object);
+    if (triangle >= c.slot.triangleCount)
+      throw InputError("the recording queries a triangle beyond its mesh");
+    c.first = triangle, c.count = 1;
+    push(c);
+  };
   for (const RecordedOp& op : ops) {
     Command c;
     switch (op.kind) {
+      case K::QueryTriangleRange:
+        for (std::uint32_t k = 0; k < op.range.triangleCount; ++k)
+          pushTriangle(op.range.object, op.range.firstTriangle + k);
+        continue;
+      case K::QueryTriangles:
+        for (std::uint32_t t : op.triangles) pushTriangle(op.object, t);
+        continue;
+      case K::QueryBoxes:
+      case K::WriteBoxes:
+        for (const OrientedBox& box : op.boxes)
+          pushBox(op.kind == K::QueryBoxes ? C::Query : C::Write, op.object, box);
+        continue;
       case K::AttachScene:
         continue;
       case K::SetOptions:
@@ -80,13 +116,8 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
         break;
       case K::QueryBox:
       case K::WriteBox:
-        c.kind = op.kind == K::QueryBox ? C::Query : C::Write;
-        c.object = op.object, c.slot = buffers.cube();
-        (void)slotOf(op.object);
-        c.count = c.slot.triangleCount;
-        c.local = static_cast<int>(p.locals.size());
-        p.locals.push_back(boxMatrix(op.box));
-        break;
+        pushBox(op.kind == K::QueryBox ? C::Query : C::Write, op.object, op.box);
+        continue;
       case K::WriteTriangles: {
         c.kind = C::WriteRuns, c.object = op.object, c.payload = p.runs.size();
         const GlMeshSlot& slot = slotOf(op.object);
@@ -109,10 +140,7 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
         p.expected.push_back(&op.answers);
         break;
     }
-    if (c.kind == C::Query) ++p.queries;
-    if ((c.kind == C::Query || c.kind == C::Write) && c.count > 0) ++p.draws;
-    if (c.kind == C::WriteRuns && !p.runs[c.payload].empty()) ++p.draws;
-    p.commands.push_back(c);
+    push(c);
   }
   return p;
 }

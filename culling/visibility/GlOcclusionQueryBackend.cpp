@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/Errors.h"
+#include "render/HeadlessGlContext.h"
 
 namespace cdb {
 
@@ -15,9 +16,11 @@ Eigen::Matrix4f boxMatrix(const OrientedBox& box) {
 
 GlOcclusionQueryBackend::GlOcclusionQueryBackend(HeadlessGlContext& context,
                                                  const VisibilityOptions& options)
-    : pipeline_(context) {
+    : context_(&context), pipeline_(context) {
   setOptions(options);
 }
+
+std::string GlOcclusionQueryBackend::renderer() const { return context_->info().glRenderer; }
 
 void GlOcclusionQueryBackend::setOptions(const VisibilityOptions& options) {
   options_ = options;

@@ -18,7 +18,8 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   explicit GlOcclusionQueryBackend(HeadlessGlContext& context,
                                    const VisibilityOptions& options = {});
 
-  [[nodiscard]] std::string_view name() const override { return "gl-occlusion-query"; }
+  [[nodiscard]] std::string_view name() const override { return "gl-queries"; }
+  [[nodiscard]] std::string renderer() const override;
   void setOptions(const VisibilityOptions& options) override;
 
   void attachScene(const SceneGeometry& scene) override;
@@ -41,7 +42,7 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   [[nodiscard]] const VisibilityOptions& options() const { return options_; }
   // The largest frame-buffer side this GL renders at (GL_MAX_RENDERBUFFER_SIZE and
   // GL_MAX_VIEWPORT_DIMS), so a run can refuse a resolution before it simulates anything.
-  [[nodiscard]] int maxResolution() const { return pipeline_.maxResolution(); }
+  [[nodiscard]] int maxResolution() const override { return pipeline_.maxResolution(); }
   // The GL layer underneath (GlDrawFloor and tests read the depth buffer through it).
   [[nodiscard]] GlVisibilityPipeline& pipeline() { return pipeline_; }
 
@@ -52,6 +53,7 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   void drawRange(const MeshRange& range, DrawRole role);
   void drawBox(ObjectId object, const OrientedBox& box, DrawRole role);
 
+  HeadlessGlContext* context_;
   GlVisibilityPipeline pipeline_;
   VisibilityOptions options_;
   VisibilityCounters counters_;

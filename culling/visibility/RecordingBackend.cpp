@@ -47,6 +47,36 @@ QueryIndex RecordingBackend::queryBox(ObjectId object, const OrientedBox& localB
   return index;
 }
 
+QueryIndex RecordingBackend::queryTriangles(const MeshRange& range) {
+  const QueryIndex index = inner_.queryTriangles(range);
+  log(RecordedOp::Kind::QueryTriangleRange).range = range;
+  return index;
+}
+
+QueryIndex RecordingBackend::queryTriangles(ObjectId object,
+                                            std::span<const std::uint32_t> triangles) {
+  const QueryIndex index = inner_.queryTriangles(object, triangles);
+  RecordedOp& op = log(RecordedOp::Kind::QueryTriangles);
+  op.object = object;
+  op.triangles.assign(triangles.begin(), triangles.end());
+  return index;
+}
+
+QueryIndex RecordingBackend::queryBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
+  const QueryIndex index = inner_.queryBoxes(object, localBoxes);
+  RecordedOp& op = log(RecordedOp::Kind::QueryBoxes);
+  op.object = object;
+  op.boxes.assign(localBoxes.begin(), localBoxes.end());
+  return index;
+}
+
+void RecordingBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
+  inner_.writeBoxes(object, localBoxes);
+  RecordedOp& op = log(RecordedOp::Kind::WriteBoxes);
+  op.object = object;
+  op.boxes.assign(localBoxes.begin(), localBoxes.end());
+}
+
 void RecordingBackend::writeRange(const MeshRange& range) {
   inner_.writeRange(range);
   log(RecordedOp::Kind::WriteRange).range = range;
@@ -104,6 +134,18 @@ void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops) {
         break;
       case RecordedOp::Kind::FetchResults:
         target.fetchResults(answers);
+        break;
+      case RecordedOp::Kind::QueryTriangleRange:
+        target.queryTriangles(op.range);
+        break;
+      case RecordedOp::Kind::QueryTriangles:
+        target.queryTriangles(op.object, op.triangles);
+        break;
+      case RecordedOp::Kind::QueryBoxes:
+        target.queryBoxes(op.object, op.boxes);
+        break;
+      case RecordedOp::Kind::WriteBoxes:
+        target.writeBoxes(op.object, op.boxes);
         break;
     }
   }

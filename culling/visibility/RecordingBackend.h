@@ -19,7 +19,11 @@ struct RecordedOp {
     WriteRange,
     WriteTriangles,
     WriteBox,
-    FetchResults
+    FetchResults,
+    QueryTriangleRange,  // each triangle of `range`
+    QueryTriangles,      // each of `triangles` of `object`
+    QueryBoxes,          // each of `boxes` of `object`
+    WriteBoxes
   };
   Kind kind = Kind::BeginPass;
   VisibilityOptions options;             // SetOptions
@@ -27,10 +31,11 @@ struct RecordedOp {
   std::vector<Pose> poses;               // SetPoses
   ViewSpec view;                         // BeginPass
   DepthUse depth = DepthUse::Fresh;      // BeginPass
-  MeshRange range;                       // QueryRange, WriteRange
-  ObjectId object = 0;                   // QueryBox, WriteTriangles, WriteBox
+  MeshRange range;                       // QueryRange, WriteRange, QueryTriangleRange
+  ObjectId object = 0;                   // QueryBox, WriteTriangles, WriteBox, the batches
   OrientedBox box;                       // QueryBox, WriteBox
-  std::vector<std::uint32_t> triangles;  // WriteTriangles
+  std::vector<std::uint32_t> triangles;  // WriteTriangles, QueryTriangles
+  std::vector<OrientedBox> boxes;        // QueryBoxes, WriteBoxes
   std::vector<std::uint8_t> answers;     // FetchResults: what the recorded backend answered
 };
 
@@ -40,12 +45,18 @@ class RecordingBackend final : public VisibilityBackend {
   explicit RecordingBackend(VisibilityBackend& inner);
 
   [[nodiscard]] std::string_view name() const override { return name_; }
+  [[nodiscard]] std::string renderer() const override { return inner_.renderer(); }
+  [[nodiscard]] int maxResolution() const override { return inner_.maxResolution(); }
   void setOptions(const VisibilityOptions& options) override;
   void attachScene(const SceneGeometry& scene) override;
   void setPoses(std::span<const Pose> poses) override;
   void beginPass(const ViewSpec& view, DepthUse depth) override;
   QueryIndex queryRange(const MeshRange& range) override;
   QueryIndex queryBox(ObjectId object, const OrientedBox& localBox) override;
+  QueryIndex queryTriangles(const MeshRange& range) override;
+  QueryIndex queryTriangles(ObjectId object, std::span<const std::uint32_t> triangles) override;
+  QueryIndex queryBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) override;
+  void writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) override;
   void writeRange(const MeshRange& range) override;
   void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) override;
   void writeBox(ObjectId object, const OrientedBox& localBox) override;

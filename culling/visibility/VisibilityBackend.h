@@ -1,14 +1,19 @@
 #pragma once
 // The visibility backend: everything a culling strategy asks of the rasteriser. A strategy draws
-// pieces of objects into a depth buffer and asks, with occlusion queries, whether a piece is
-// "fully visible" with respect to what was drawn before it (no sample of it at or behind the
-// stored depth). Two implementations: OpenGL occlusion queries (GlOcclusionQueryBackend) and a
-// scripted oracle for unit tests (ScriptedVisibilityOracle).
+// pieces of objects into a depth buffer and asks whether a piece is "fully visible" with respect
+// to what was written before it (no sample of it at or behind the stored depth). How a backend
+// answers is its own business (GL occlusion queries, flags set by a batched draw, a CPU
+// rasteriser); the backends a run can choose are listed in VisibilityBackendRegistry, and a
+// scripted oracle answers for unit tests (ScriptedVisibilityOracle).
 //
 // Queries are asynchronous: they are numbered 0, 1, 2, ... in the order issued since the last
-// fetchResults(), which returns all their answers at once (one synchronisation point).
+// fetchResults(), which returns all their answers at once (one synchronisation point). A batch
+// (queryTriangles, queryBoxes) issues one query per piece, numbered consecutively; every piece of
+// a batch is answered with respect to what was written before the batch, so pieces of one batch
+// never occlude each other.
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -58,6 +63,9 @@ struct VisibilityOptions {
   // Raw mode: plain rasterisation with this small offset (NDC depth units) toward the tested piece
   // being seen as occluded, as in the thesis.
   double rawDepthOffset = 1e-5;
+  // Worker threads of backends that use the CPU's cores (0 = all of them); answers never depend
+  // on it.
+  int threads = 0;
 };
 
 struct VisibilityCounters {
@@ -67,26 +75,39 @@ struct VisibilityCounters {
   std::uint64_t depthClears = 0;
   std::uint64_t passes = 0;
   std::uint64_t fetches = 0;         // synchronisations to read query results
+  // Pixels visited by tests and by writes: a measure of rasterisation work that does not depend
+  // on the machine. Only backends that rasterise themselves count them (0 elsewhere).
+  std::uint64_t pixelsTested = 0;
+  std::uint64_t pixelsWritten = 0;
 
   VisibilityCounters& operator+=(const VisibilityCounters& o) {
     queries += o.queries; draws += o.draws; trianglesDrawn += o.trianglesDrawn;
     depthClears += o.depthClears; passes += o.passes; fetches += o.fetches;
+    pixelsTested += o.pixelsTested; pixelsWritten += o.pixelsWritten;
     return *this;
   }
   friend VisibilityCounters operator-(VisibilityCounters a, const VisibilityCounters& b) {
     a.queries -= b.queries; a.draws -= b.draws; a.trianglesDrawn -= b.trianglesDrawn;
     a.depthClears -= b.depthClears; a.passes -= b.passes; a.fetches -= b.fetches;
+    a.pixelsTested -= b.pixelsTested; a.pixelsWritten -= b.pixelsWritten;
     return a;
   }
 };
 
 using QueryIndex = std::uint32_t;
+// Returned by a batch of no pieces: nothing was issued.
+inline constexpr QueryIndex kNoQuery = ~QueryIndex{0};
 
 class VisibilityBackend {
  public:
   virtual ~VisibilityBackend() = default;
 
+  // The registry name ("gl-queries", "gl-flags", "cpu", ...).
   [[nodiscard]] virtual std::string_view name() const = 0;
+  // What renders: the GL renderer string, or the CPU rasteriser's instruction set and threads.
+  [[nodiscard]] virtual std::string renderer() const { return std::string(name()); }
+  // The largest frame-buffer side this backend renders at.
+  [[nodiscard]] virtual int maxResolution() const { return 16384; }
   virtual void setOptions(const VisibilityOptions& options) = 0;
 
   // Makes the scene's meshes resident (once per scene, not per frame).
@@ -102,10 +123,21 @@ class VisibilityBackend {
   // A box in the object's local frame (a BVH node), drawn under the object's pose.
   virtual QueryIndex queryBox(ObjectId object, const OrientedBox& localBox) = 0;
 
+  // Batches: one answer per piece, numbered consecutively from the returned index (kNoQuery for
+  // an empty batch). The defaults issue the single calls above; backends answer a batch at once.
+  // Each triangle of `range`.
+  virtual QueryIndex queryTriangles(const MeshRange& range);
+  // Each listed triangle (indices into the object's mesh).
+  virtual QueryIndex queryTriangles(ObjectId object, std::span<const std::uint32_t> triangles);
+  // Each box, in the object's local frame.
+  virtual QueryIndex queryBoxes(ObjectId object, std::span<const OrientedBox> localBoxes);
+
   // Depth writes (no query).
   virtual void writeRange(const MeshRange& range) = 0;
   virtual void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) = 0;
   virtual void writeBox(ObjectId object, const OrientedBox& localBox) = 0;
+  // Every box (the default writes them one at a time).
+  virtual void writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes);
 
   // Answers of every query issued since the last call, in issue order: 1 = fully visible.
   virtual void fetchResults(std::vector<std::uint8_t>& fullyVisible) = 0;

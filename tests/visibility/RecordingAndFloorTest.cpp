@@ -62,7 +62,7 @@ TEST(RecordingBackend, ForwardsLogsAndReplays) {
   const ToriRun run;
   GlOcclusionQueryBackend gl(test::sharedGlContext());
   RecordingBackend recording(gl);
-  EXPECT_EQ(recording.name(), "recording:gl-occlusion-query");
+  EXPECT_EQ(recording.name(), "recording:gl-queries");
   recording.attachScene(run.scene);
   run.frame(recording);
   const VisibilityCounters recorded = recording.counters();

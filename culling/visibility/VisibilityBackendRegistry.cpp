@@ -1,0 +1,64 @@
+#include "culling/visibility/VisibilityBackendRegistry.h"
+
+#include "core/Errors.h"
+#include "culling/visibility/GlOcclusionQueryBackend.h"
+
+namespace cdb {
+
+const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
+  static const VisibilityBackendRegistry registry = [] {
+    VisibilityBackendRegistry r;
+    r.add("gl-queries",
+          "OpenGL occlusion queries, one query object per tested piece (the thesis' mechanism)",
+          {.needsGl = true},
+          [](BackendResources& resources, const VisibilityOptions& options) {
+            return std::make_unique<GlOcclusionQueryBackend>(resources.gl(), options);
+          });
+    return r;
+  }();
+  return registry;
+}
+
+void VisibilityBackendRegistry::add(std::string name, std::string description,
+                                    BackendTraits traits, Factory factory) {
+  entries_.push_back({std::move(name), std::move(description), traits, std::move(factory)});
+}
+
+const VisibilityBackendRegistry::Entry* VisibilityBackendRegistry::find(std::string_view name) const {
+  for (const auto& e : entries_)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+bool VisibilityBackendRegistry::contains(std::string_view name) const { return find(name) != nullptr; }
+
+std::vector<std::string> VisibilityBackendRegistry::names() const {
+  std::vector<std::string> out;
+  for (const auto& e : entries_) out.push_back(e.name);
+  return out;
+}
+
+std::string VisibilityBackendRegistry::description(std::string_view name) const {
+  const Entry* e = find(name);
+  return e ? e->description : std::string();
+}
+
+BackendTraits VisibilityBackendRegistry::traits(std::string_view name) const {
+  const Entry* e = find(name);
+  return e ? e->traits : BackendTraits{};
+}
+
+void VisibilityBackendRegistry::validate(std::string_view name) const {
+  if (contains(name)) return;
+  std::string known;
+  for (const auto& e : entries_) known += (known.empty() ? "" : ", ") + e.name;
+  throw InputError("unknown visibility backend '" + std::string(name) + "': expected one of " + known);
+}
+
+std::unique_ptr<VisibilityBackend> VisibilityBackendRegistry::create(
+    std::string_view name, BackendResources& resources, const VisibilityOptions& options) const {
+  validate(name);
+  return find(name)->factory(resources, options);
+}
+
+}  // namespace cdb

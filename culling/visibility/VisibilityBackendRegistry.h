@@ -1,0 +1,54 @@
+#pragma once
+// Visibility backends by name, as StrategyRegistry holds strategies: every place that needs a
+// backend (runner, check, floor comparison, benchmarks, tests) creates it through here, so a new
+// backend is one class plus one entry in VisibilityBackendRegistry.cpp.
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "culling/visibility/BackendResources.h"
+#include "culling/visibility/VisibilityBackend.h"
+
+namespace cdb {
+
+struct BackendTraits {
+  bool needsGl = false;  // opens the headless GL context (EGL) of BackendResources
+};
+
+class VisibilityBackendRegistry {
+ public:
+  using Factory = std::function<std::unique_ptr<VisibilityBackend>(BackendResources&,
+                                                                   const VisibilityOptions&)>;
+
+  // The registry with every backend of the project.
+  static const VisibilityBackendRegistry& builtin();
+  // The backend a run uses when neither the command line nor the config names one.
+  static constexpr std::string_view kDefault = "gl-queries";
+
+  void add(std::string name, std::string description, BackendTraits traits, Factory factory);
+  // Throws InputError naming the unknown backend and listing the known ones; RunError when the
+  // backend cannot start here (no GL).
+  [[nodiscard]] std::unique_ptr<VisibilityBackend> create(std::string_view name,
+                                                          BackendResources& resources,
+                                                          const VisibilityOptions& options) const;
+  [[nodiscard]] bool contains(std::string_view name) const;
+  [[nodiscard]] std::vector<std::string> names() const;
+  [[nodiscard]] std::string description(std::string_view name) const;
+  [[nodiscard]] BackendTraits traits(std::string_view name) const;
+  // Throws InputError for an unknown name.
+  void validate(std::string_view name) const;
+
+ private:
+  struct Entry {
+    std::string name;
+    std::string description;
+    BackendTraits traits;
+    Factory factory;
+  };
+  const Entry* find(std::string_view name) const;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace cdb
