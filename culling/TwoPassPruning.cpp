@@ -2,9 +2,9 @@
 
 namespace cdb {
 
-std::vector<ObjectId> pruneObjectsTwoPass(VisibilityBackend& backend, const SceneGeometry& scene,
-                                          const std::vector<ObjectId>& order, const PassPair& passes,
-                                          std::vector<std::uint8_t>& answers) {
+void objectPassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
+                       const std::vector<ObjectId>& order, const PassPair& passes,
+                       TwoPassAnswers& answers) {
   backend.beginPass(passes.first, passes.firstDepth);
   for (ObjectId o : order) {
     backend.queryRange(wholeMesh(scene, o));
@@ -15,19 +15,20 @@ std::vector<ObjectId> pruneObjectsTwoPass(VisibilityBackend& backend, const Scen
     backend.queryRange(wholeMesh(scene, *it));
     backend.writeRange(wholeMesh(scene, *it));
   }
-  backend.fetchResults(answers);
+  backend.fetchResults(answers.fetched);
 
   const std::size_t n = order.size();
-  std::vector<ObjectId> kept;
-  kept.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    if (!(answers[i] && answers[2 * n - 1 - i])) kept.push_back(order[i]);
-  return kept;
+  answers.first.resize(n);
+  answers.second.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    answers.first[i] = answers.fetched[i];
+    answers.second[i] = answers.fetched[2 * n - 1 - i];
+  }
 }
 
-std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend, const SceneGeometry& scene,
-                                             std::vector<SetMember> ordered, const PassPair& passes,
-                                             std::vector<std::uint8_t>& answers) {
+void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
+                         const std::vector<SetMember>& ordered, const PassPair& passes,
+                         TwoPassAnswers& answers) {
   const auto drawMember = [&](const SetMember& m) {
     backend.queryTriangles(m.object, m.triangles);
     if (m.triangles.size() == scene.meshOf(m.object).triangleCount())
@@ -39,21 +40,47 @@ std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend, const S
   for (const auto& m : ordered) drawMember(m);
   backend.beginPass(passes.second, passes.secondDepth);
   for (auto it = ordered.rbegin(); it != ordered.rend(); ++it) drawMember(*it);
-  backend.fetchResults(answers);
+  backend.fetchResults(answers.fetched);
 
   std::size_t total = 0;
   for (const auto& m : ordered) total += m.triangles.size();
-  std::vector<SetMember> kept;
+  answers.first.resize(total);
+  answers.second.resize(total);
   std::size_t first1 = 0;
   std::size_t end2 = 2 * total;  // pass 2 runs members in reverse, so member i ends where i-1 began
-  for (auto& m : ordered) {
+  for (const auto& m : ordered) {
     const std::size_t count = m.triangles.size();
     const std::size_t first2 = end2 - count;
-    SetMember out{m.object, {}};
-    for (std::size_t k = 0; k < count; ++k)
-      if (!(answers[first1 + k] && answers[first2 + k])) out.triangles.push_back(m.triangles[k]);
+    for (std::size_t k = 0; k < count; ++k) {
+      answers.first[first1 + k] = answers.fetched[first1 + k];
+      answers.second[first1 + k] = answers.fetched[first2 + k];
+    }
     first1 += count;
     end2 = first2;
+  }
+}
+
+std::vector<ObjectId> pruneObjectsTwoPass(VisibilityBackend& backend, const SceneGeometry& scene,
+                                          const std::vector<ObjectId>& order, const PassPair& passes,
+                                          TwoPassAnswers& answers) {
+  objectPassAnswers(backend, scene, order, passes, answers);
+  std::vector<ObjectId> kept;
+  kept.reserve(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    if (!answers.inBoth(i)) kept.push_back(order[i]);
+  return kept;
+}
+
+std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend, const SceneGeometry& scene,
+                                             std::vector<SetMember> ordered, const PassPair& passes,
+                                             TwoPassAnswers& answers) {
+  trianglePassAnswers(backend, scene, ordered, passes, answers);
+  std::vector<SetMember> kept;
+  std::size_t piece = 0;
+  for (auto& m : ordered) {
+    SetMember out{m.object, {}};
+    for (std::uint32_t t : m.triangles)
+      if (!answers.inBoth(piece++)) out.triangles.push_back(t);
     if (!out.triangles.empty()) kept.push_back(std::move(out));
   }
   return kept;

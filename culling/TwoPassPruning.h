@@ -26,23 +26,45 @@ struct PassPair {
   }
 };
 
-// Object level: `order` is pass 1's draw order. Returns the objects not fully visible in both
-// passes, in that order. `answers` is scratch space reused across calls.
+// Both passes' answers, one per piece in pass-1 order. `first`: fully visible with respect to the
+// pieces before it (pass 1); `second`: fully visible with respect to the pieces after it (pass 2).
+// By CULLIDE's lemma a piece fully visible with respect to a set collides with none of it.
+struct TwoPassAnswers {
+  std::vector<std::uint8_t> first;
+  std::vector<std::uint8_t> second;
+  std::vector<std::uint8_t> fetched;  // the backend's answers in issue order, reused across calls
+  [[nodiscard]] bool inBoth(std::size_t piece) const { return first[piece] && second[piece]; }
+};
+
+// Object level: both passes over `order` (pass 1's draw order), each object queried then drawn
+// whole. `answers` is reused across calls.
+void objectPassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
+                       const std::vector<ObjectId>& order, const PassPair& passes,
+                       TwoPassAnswers& answers);
+
+// Triangle level: one query per triangle, a member's triangles in one batch, then the member
+// drawn; `ordered` is pass 1's order with triangle lists explicit. An object's own triangles are
+// all tested before it is drawn, so an object never occludes itself. The answers are per
+// triangle, members after one another in pass-1 order.
+void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
+                         const std::vector<SetMember>& ordered, const PassPair& passes,
+                         TwoPassAnswers& answers);
+
+// CULLIDE's pruning on those answers. Object level: the objects not fully visible in both passes,
+// in `order`'s order.
 [[nodiscard]] std::vector<ObjectId> pruneObjectsTwoPass(VisibilityBackend& backend,
                                                         const SceneGeometry& scene,
                                                         const std::vector<ObjectId>& order,
                                                         const PassPair& passes,
-                                                        std::vector<std::uint8_t>& answers);
+                                                        TwoPassAnswers& answers);
 
-// Triangle level: one query per triangle, a member's triangles in one batch; `ordered` (pass 1's order, triangle lists explicit) is
-// consumed. An object's own triangles are all tested before it is drawn, so an object never
-// occludes itself. Returns the members with the triangles left, in pass-1 order, dropping members
-// left with none.
+// Triangle level, `ordered` consumed: the members with the triangles left, in pass-1 order,
+// dropping members left with none.
 [[nodiscard]] std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend,
                                                            const SceneGeometry& scene,
                                                            std::vector<SetMember> ordered,
                                                            const PassPair& passes,
-                                                           std::vector<std::uint8_t>& answers);
+                                                           TwoPassAnswers& answers);
 
 // Each object with its whole triangle list written out, for the triangle level.
 [[nodiscard]] std::vector<SetMember> withAllTriangles(const SceneGeometry& scene,

@@ -8,6 +8,7 @@
 
 #include "culling/CullingStrategy.h"
 #include "culling/StrategyRegistry.h"
+#include "culling/TwoPassPruning.h"
 #include "culling/WorldBounds.h"
 
 namespace cdb {
@@ -28,7 +29,7 @@ class Cullide final : public CullingStrategy {
   const SceneGeometry* scene_ = nullptr;
   VisibilityBackend* backend_ = nullptr;
   WorldBounds bounds_;
-  std::vector<std::uint8_t> visible_;  // query answers, reused across frames
+  TwoPassAnswers visible_;  // query answers, reused across frames
 };
 
 }  // namespace cdb

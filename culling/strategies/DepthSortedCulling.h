@@ -16,6 +16,7 @@
 #include "culling/CullingStrategy.h"
 #include "culling/SortedIntervals.h"
 #include "culling/StrategyRegistry.h"
+#include "culling/TwoPassPruning.h"
 #include "culling/WorldBounds.h"
 
 namespace cdb {
@@ -47,7 +48,7 @@ class DepthSortedCulling final : public CullingStrategy {
   std::array<SortedIntervals, 3> sorted_;  // one list per axis, kept across frames
   std::uint64_t exchanges_ = 0;
   std::vector<std::uint8_t> inSet_;    // per object: still in the set being pruned
-  std::vector<std::uint8_t> visible_;  // query answers, reused across frames
+  TwoPassAnswers visible_;  // query answers, reused across frames
 };
 
 }  // namespace cdb
