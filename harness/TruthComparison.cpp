@@ -16,15 +16,25 @@ TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
   std::set_difference(found.begin(), found.end(), truth.begin(), truth.end(), std::back_inserter(diff));
   c.falsePositives = diff.size();
 
+  // Sets that let any two members meet, per object; the pairs listed by the other sets.
   std::vector<std::vector<std::uint32_t>> setsOf(objectCount);
-  for (std::uint32_t s = 0; s < sets.size(); ++s)
-    for (const auto& m : sets[s].members) setsOf[m.object].push_back(s);
+  std::vector<ObjectPair> listed;
+  for (std::uint32_t s = 0; s < sets.size(); ++s) {
+    const auto& members = sets[s].members;
+    if (sets[s].pairs) {
+      for (const auto& p : *sets[s].pairs)
+        listed.push_back(ObjectPair::of(members[p.first].object, members[p.second].object));
+    } else {
+      for (const auto& m : members) setsOf[m.object].push_back(s);
+    }
+  }
+  std::sort(listed.begin(), listed.end());
   for (const auto& p : truth) {
     const auto& a = setsOf[p.a];
     const auto& b = setsOf[p.b];
     const bool together = std::any_of(a.begin(), a.end(), [&](std::uint32_t s) {
       return std::find(b.begin(), b.end(), s) != b.end();
-    });
+    }) || std::binary_search(listed.begin(), listed.end(), p);
     if (!together) ++c.cullingMisses;
   }
   return c;

@@ -12,7 +12,8 @@ namespace cdb {
 struct TruthComparison {
   std::uint64_t falseNegatives = 0;  // truth pairs missing from the final colliding pairs
   std::uint64_t falsePositives = 0;  // final pairs the truth does not have
-  std::uint64_t cullingMisses = 0;   // truth pairs not together in any one set (pruned or split)
+  std::uint64_t cullingMisses = 0;   // truth pairs not together in any one set (pruned or split),
+                                     // or left out of the pairs a set lists
 };
 
 // Both pair lists sorted and unique.

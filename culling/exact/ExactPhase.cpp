@@ -46,6 +46,7 @@ struct ExactPhase::Workspace {
   // Per set and per pair; kept so that frames after the first do not allocate.
   std::vector<Aabb> memberBoxes;
   std::vector<IndexPair> memberPairs;
+  std::vector<std::uint32_t> listedPairOf;  // a set with listed pairs: each member pair's entry
   std::vector<MemberGeometry> members;
   std::vector<Aabb> candidateBoxes[2];
   std::vector<std::uint32_t> candidateTriangles[2];
@@ -138,20 +139,59 @@ void prepare(MemberGeometry& g, const Mesh& mesh, const SetMember& member, const
   }
 }
 
-// The member triangles whose world boxes reach into `region`; returns the box around them.
-Aabb collectCandidates(const MemberGeometry& g, const Aabb& region, std::vector<Aabb>& boxes,
+// The member triangles (all, or the positions in `subset`) whose world boxes reach into `region`;
+// returns the box around them.
+Aabb collectCandidates(const MemberGeometry& g, std::span<const std::uint32_t> subset,
+                       const Aabb& region, std::vector<Aabb>& boxes,
                        std::vector<std::uint32_t>& triangles) {
   boxes.clear();
   triangles.clear();
   Aabb reach;
-  for (std::uint32_t k = 0; k < g.boxes.size(); ++k) {
+  const auto consider = [&](std::uint32_t k) {
     if (g.boxes[k].intersects(region)) {
       boxes.push_back(g.boxes[k]);
       triangles.push_back(k);
       reach.extend(g.boxes[k]);
     }
+  };
+  if (subset.empty()) {
+    for (std::uint32_t k = 0; k < g.boxes.size(); ++k) consider(k);
+  } else {
+    for (std::uint32_t k : subset) consider(k);
   }
   return reach;
+}
+
+// A set's listed pairs whose member boxes overlap, as sweep-and-prune would have found them, into
+// `out`; checks the listed indices on the way.
+void listedOverlaps(const SceneGeometry& scene, const PotentiallyCollidingSet& set,
+                    const std::vector<Aabb>& memberBoxes, std::vector<IndexPair>& out,
+                    std::vector<std::uint32_t>& pairOf) {
+  out.clear();
+  pairOf.clear();
+  const auto& members = set.members;
+  const auto check = [&](std::span<const std::uint32_t> positions, std::uint32_t member) {
+    const SetMember& m = members[member];
+    const std::size_t count =
+        m.allTriangles() ? scene.meshOf(m.object).triangleCount() : m.triangles.size();
+    for (std::uint32_t k : positions)
+      if (k >= count)
+        throw std::out_of_range("exact phase: pair position " + std::to_string(k) + " beyond the " +
+                                std::to_string(count) + " triangles of member " +
+                                std::to_string(member));
+  };
+  for (std::uint32_t p = 0; p < set.pairs->size(); ++p) {
+    const MemberPair& pair = (*set.pairs)[p];
+    if (pair.first >= members.size() || pair.second >= members.size())
+      throw std::out_of_range("exact phase: pair " + std::to_string(p) + " names member " +
+                              std::to_string(std::max(pair.first, pair.second)) + " of " +
+                              std::to_string(members.size()));
+    check(pair.firstTriangles, pair.first);
+    check(pair.secondTriangles, pair.second);
+    if (!memberBoxes[pair.first].intersects(memberBoxes[pair.second])) continue;
+    out.push_back({pair.first, pair.second});
+    pairOf.push_back(p);
+  }
 }
 
 // Keeps the candidates whose boxes reach into `region`, in place; returns the box around them.
@@ -195,12 +235,22 @@ CollisionReport ExactPhase::run(std::span<const Pose> poses, const PotentiallyCo
       const Aabb local = localBoxOf(m, w.meshBounds[mesh], w.localTriangleBoxes[mesh]);
       w.memberBoxes.push_back(conservative(transformAabb(local, poses[m.object])));
     }
-    w.sweep.overlaps(w.memberBoxes, w.memberPairs);
+    if (set.pairs)
+      listedOverlaps(scene_, set, w.memberBoxes, w.memberPairs, w.listedPairOf);
+    else
+      w.sweep.overlaps(w.memberBoxes, w.memberPairs);
 
     if (w.members.size() < members.size()) w.members.resize(members.size());
     for (std::size_t k = 0; k < members.size(); ++k) w.members[k].ready = false;
 
-    for (const IndexPair& mp : w.memberPairs) {
+    for (std::size_t q = 0; q < w.memberPairs.size(); ++q) {
+      const IndexPair& mp = w.memberPairs[q];
+      std::span<const std::uint32_t> subsetA, subsetB;  // empty: every triangle of the member
+      if (set.pairs) {
+        const MemberPair& listed = (*set.pairs)[w.listedPairOf[q]];
+        subsetA = listed.firstTriangles;
+        subsetB = listed.secondTriangles;
+      }
       const SetMember& ma = members[mp.i];
       const SetMember& mb = members[mp.j];
       if (ma.object == mb.object) continue;
@@ -218,10 +268,10 @@ CollisionReport ExactPhase::run(std::span<const Pose> poses, const PotentiallyCo
       const Aabb common = ga.bounds.intersection(gb.bounds);
       if (common.isEmpty()) continue;
       const Aabb reachA =
-          collectCandidates(ga, common, w.candidateBoxes[0], w.candidateTriangles[0]);
+          collectCandidates(ga, subsetA, common, w.candidateBoxes[0], w.candidateTriangles[0]);
       if (w.candidateBoxes[0].empty()) continue;
       const Aabb reachB =
-          collectCandidates(gb, reachA, w.candidateBoxes[1], w.candidateTriangles[1]);
+          collectCandidates(gb, subsetB, reachA, w.candidateBoxes[1], w.candidateTriangles[1]);
       if (w.candidateBoxes[1].empty()) continue;
       narrowCandidates(reachB, w.candidateBoxes[0], w.candidateTriangles[0]);
       w.sweep.overlaps(w.candidateBoxes[0], w.candidateBoxes[1], w.trianglePairs);

@@ -1,7 +1,9 @@
 #pragma once
 // The exact phase shared by every image-based strategy: inside each potentially colliding set,
 // sweep-and-prune on world AABBs of the members, then triangle-triangle tests (double precision,
-// robust) between the surviving member pairs, restricted to each member's triangle subset.
+// robust) between the surviving member pairs, restricted to each member's triangle subset. A set
+// that lists its pairs (PotentiallyCollidingSet::pairs) has only those pairs swept, each side
+// restricted further to the pair's own triangles.
 #include <memory>
 #include <span>
 
