@@ -9,6 +9,7 @@
 #include "culling/strategies/CullideWithHierarchy.h"
 #include "culling/strategies/DepthSortedCulling.h"
 #include "culling/strategies/HierarchicalCollisionIndependentSets.h"
+#include "culling/strategies/QuickCullide.h"
 
 namespace cdb {
 
@@ -27,6 +28,9 @@ const StrategyRegistry& StrategyRegistry::builtin() {
           [](const StrategyOptions& o) {
             return std::make_unique<HierarchicalCollisionIndependentSets>(o);
           });
+    r.add("quick_cullide",
+          "Quick-CULLIDE: CULLIDE's passes with each pass' answers kept, pairs freed by either pass",
+          [](const StrategyOptions& o) { return std::make_unique<QuickCullide>(o); });
     r.add("fcl", "CPU peer: FCL 0.7, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
           [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); });
     r.add("bullet", "CPU peer: Bullet 3.24 (double), btDbvtBroadphase, GImpact meshes, margin 0",
