@@ -189,6 +189,58 @@ TEST(ExactPhase, CubesSharingAFaceTouch) {
   EXPECT_EQ(got.collidingTrianglePairs, expected.collidingTrianglePairs);
 }
 
+TEST(ExactPhase, ListedPairsAreTheOnlyOnesTested) {
+  const auto s = testing::randomTori(30, 2.5, 1, 41);
+  const auto& poses = s.frames[0];
+  ExactPhase exact(s.scene);
+  auto sets = oneSetOfAll(s.scene.objectCount());
+  const CollisionReport all = exact.run(poses, sets);
+  ASSERT_GE(all.collidingPairs.size(), 2u);
+
+  // Only the first colliding pair listed: the others are neither tested nor found.
+  const ObjectPair listed = all.collidingPairs.front();
+  sets[0].pairs = std::vector<MemberPair>{{listed.a, listed.b, {}, {}}};
+  CollisionReport got = exact.run(poses, sets);
+  EXPECT_EQ(got.collidingPairs, (std::vector<ObjectPair>{listed}));
+  EXPECT_EQ(got.pairsTested, 1u);
+
+  // Every overlapping pair listed: the sweep's answer.
+  sets[0].pairs->clear();
+  for (ObjectId a = 0; a < s.scene.objectCount(); ++a)
+    for (ObjectId b = a + 1; b < s.scene.objectCount(); ++b) sets[0].pairs->push_back({a, b, {}, {}});
+  got = exact.run(poses, sets);
+  EXPECT_EQ(got.collidingPairs, all.collidingPairs);
+  EXPECT_EQ(got.pairsTested, all.pairsTested);
+  EXPECT_EQ(got.triangleTests, all.triangleTests);
+
+  // No pair listed: nothing tested.
+  sets[0].pairs->clear();
+  got = exact.run(poses, sets);
+  EXPECT_TRUE(got.collidingPairs.empty());
+  EXPECT_EQ(got.pairsTested, 0u);
+}
+
+TEST(ExactPhase, ListedPairSidesRestrictTheTriangles) {
+  // Cube 0's +x face touches cube 1's -x face; cube 1's top face is above cube 0.
+  SceneGeometry scene;
+  scene.meshes.push_back(testing::unitCube());
+  scene.objects = {{0, false, "cube"}, {0, false, "cube"}};
+  std::vector<Pose> poses(2);
+  poses[1].translation = {1, 0.25, 0.25};
+  ExactPhase exact(scene);
+  PotentiallyCollidingSets sets(1);
+  // Member 1 keeps triangles 2 (top face) and 8 (-x face); positions 0 and 1 of its list.
+  sets[0].members = {{0, {10, 11}}, {1, {2, 8}}};
+  sets[0].pairs = std::vector<MemberPair>{{0, 1, {}, {1}}};
+  EXPECT_EQ(exact.run(poses, sets).collidingPairs, (std::vector<ObjectPair>{{0, 1}}));
+  (*sets[0].pairs)[0].secondTriangles = {0};  // only the top face's triangle on member 1's side
+  EXPECT_TRUE(exact.run(poses, sets).collidingPairs.empty());
+  (*sets[0].pairs)[0].secondTriangles = {2};  // beyond member 1's two triangles
+  EXPECT_THROW((void)exact.run(poses, sets), std::out_of_range);
+  (*sets[0].pairs)[0] = {0, 2, {}, {}};  // no member 2
+  EXPECT_THROW((void)exact.run(poses, sets), std::out_of_range);
+}
+
 TEST(ExactPhase, TrivialAndInvalidInput) {
   const auto s = testing::randomTori(4, 1.0, 1, 51, 8, 6);
   ExactPhase exact(s.scene);
