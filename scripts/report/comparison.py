@@ -5,9 +5,10 @@ import io
 from dataclasses import dataclass, field
 
 from .runs import STATISTICS, strategy_order
+from .thesis import NAMED_WITHOUT_NUMBERS
 
 REFERENCE = "ours"                         # the thesis' approach, the denominator of every speedup
-RATIO_NUMERATORS = ("cullide", "cullide_bvh")
+RATIO_NUMERATORS = ("cullide", "cullide_bvh", "quick_cullide")
 AXIS_UNITS = {"resolution": "frame-buffer resolution (pixels, square)", "objects": "object count"}
 
 
@@ -139,10 +140,28 @@ def _beside(ours, thesis, fmt):
     return f"{fmt(ours)} (thesis {fmt(thesis)})"
 
 
+def without_thesis_numbers(cmp):
+    """Strategies of this run that the thesis names but gives no numbers for, when there is a thesis table."""
+    if not cmp.table:
+        return []
+    return [s for s in cmp.strategies if s in NAMED_WITHOUT_NUMBERS and not any(k[1] == s for k in cmp.thesis)]
+
+
+def _label(strategy, unnumbered):
+    return f"{strategy} (no thesis numbers)" if strategy in unnumbered else strategy
+
+
+def _no_numbers_note(cmp, unnumbered):
+    names = ", ".join(f"`{s}` ({NAMED_WITHOUT_NUMBERS[s]})" for s in unnumbered)
+    return (f"The thesis compares against {names} in its text but gives no numbers for it in Table {cmp.table}: "
+            f"its rows show this run alone, with nothing from the thesis to hold them to.\n")
+
+
 def comparison_markdown(cmp, level=2):
     h = "#" * level
     lay = cmp.layout
     source = f" (Table {cmp.table} in parentheses)" if cmp.table else ""
+    unnumbered = without_thesis_numbers(cmp)
     out = []
     header = f"| strategy \\ {lay.axis} | " + " | ".join(str(c) for c in lay.columns) + " |"
     rule = "|---|" + "---:|" * len(lay.columns)
@@ -154,11 +173,13 @@ def comparison_markdown(cmp, level=2):
         for strategy in cmp.strategies:
             cells = [_beside(cmp.ours.get((statistic, strategy, c)), cmp.thesis.get((statistic, strategy, c)),
                              fmt_ms) for c in lay.columns]
-            out.append(f"| {strategy} | " + " | ".join(cells) + " |")
+            out.append(f"| {_label(strategy, unnumbered)} | " + " | ".join(cells) + " |")
         for strategy in strategy_order({k[1] for k in cmp.thesis} - set(cmp.strategies)):
             cells = [_beside(None, cmp.thesis.get((statistic, strategy, c)), fmt_ms) for c in lay.columns]
             out.append(f"| {strategy} (not run) | " + " | ".join(cells) + " |")
         out.append("")
+    if unnumbered:
+        out.append(_no_numbers_note(cmp, unnumbered))
     rows = cmp.ratio_rows
     if rows:
         out.append(f"{h} {cmp.run.name}: speedup of {REFERENCE} (the named strategy's CD time divided by "
@@ -169,7 +190,9 @@ def comparison_markdown(cmp, level=2):
             for numerator in rows:
                 cells = [_beside(*cmp.ratios[(statistic, numerator, c)], fmt_ratio) for c in lay.columns]
                 cells.append(_beside(*cmp.ratio_means[(statistic, numerator)], fmt_ratio))
-                out.append(f"| {numerator} / {REFERENCE}, {statistic} | " + " | ".join(cells) + " |")
+                out.append(f"| {numerator} / {REFERENCE}, {statistic}"
+                           + (" (no thesis numbers)" if numerator in unnumbered else "")
+                           + " | " + " | ".join(cells) + " |")
         out.append("")
     elif REFERENCE not in cmp.strategies:
         out.append(f"No speedup ratios: `{REFERENCE}` is not in this run.\n")

@@ -22,8 +22,8 @@ FIGURE_NAMES = {
 GENERIC_NAMES = {"sweep": "cd_time_sweep", "per_frame": "cd_time_per_frame", "sets": "sets_per_frame"}
 
 # One colour per strategy in every figure, so a reader matches lines across figures at a glance.
-COLOURS = {"cullide": "tab:red", "cullide_bvh": "tab:orange", "sorted": "tab:purple", "cis": "tab:green",
-           "ours": "tab:blue", "fcl": "tab:brown", "bullet": "tab:pink", "ode": "tab:gray"}
+COLOURS = {"cullide": "tab:red", "cullide_bvh": "tab:orange", "quick_cullide": "darkred", "sorted": "tab:purple",
+           "cis": "tab:green", "ours": "tab:blue", "fcl": "tab:brown", "bullet": "tab:pink", "ode": "tab:gray"}
 EXTRA_COLOURS = ["tab:olive", "tab:cyan", "black", "gold"]
 PER_FRAME_RESOLUTION = 800      # the thesis' per-frame figures are all at 800x800
 PAIR_STRATEGIES = ("cullide_bvh", "ours")    # Figure 4.8

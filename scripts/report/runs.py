@@ -20,7 +20,7 @@ TABLE_REQUIRED = ("environment", "statistic", "strategy", "resolution", "objects
 THESIS_ENVIRONMENTS = ("env1", "env2", "env3")
 
 # A stable row order: the thesis' strategies in the order of its tables' narrative, then CPU peers.
-KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "sorted", "cis", "ours", "fcl", "bullet", "ode")
+KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "quick_cullide", "sorted", "cis", "ours", "fcl", "bullet", "ode")
 
 
 def strategy_order(names):

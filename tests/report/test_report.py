@@ -22,16 +22,18 @@ RENDERER = "llvmpipe (LLVM 15.0.6, 256 bits)"
 # env1: CD time of a frame = base + frame (repeat 0) or base + 2 * frame (repeat 1), frames 0..3,
 # so every cell's average is base + 2.25 ms and its maximum base + 6 ms.
 ENV1_BASE = {"cullide": {500: 20.0, 800: 30.0}, "cullide_bvh": {500: 12.0, 800: 16.0},
-             "cis": {500: 9.0, 800: 11.0}, "ours": {500: 5.0, 800: 8.0}}
+             "quick_cullide": {500: 18.0, 800: 26.0}, "cis": {500: 9.0, 800: 11.0}, "ours": {500: 5.0, 800: 8.0}}
+# Pairs left for the exact phase per frame (env1): Quick-CULLIDE's classification leaves fewer than CULLIDE.
+ENV1_PAIRS = {"cullide": 5, "quick_cullide": 3}
 # env3 (800x800, one repeat, frames 0..2): CD time = base + frame, average base + 1, maximum base + 2.
 ENV3_BASE = {"cullide": {50: 4.0, 75: 9.0}, "ours": {50: 1.0, 75: 2.0}}
 
 
-def frame_row(env, strategy, resolution, objects, repeat, frame, cd_ms, sets, false_negatives=0):
+def frame_row(env, strategy, resolution, objects, repeat, frame, cd_ms, sets, false_negatives=0, pairs_tested=0):
     values = dict.fromkeys(FRAME_HEADER, 0)
     values.update(environment=env, strategy=strategy, resolution=resolution, objects=objects, repeat=repeat,
                   frame=frame, cd_ms=cd_ms, cull_ms=cd_ms * 0.75, exact_ms=cd_ms * 0.25, sets=sets,
-                  false_negatives=false_negatives, truth_pairs=2, colliding_pairs=2)
+                  false_negatives=false_negatives, truth_pairs=2, colliding_pairs=2, pairs_tested=pairs_tested)
     return [values[k] for k in FRAME_HEADER]
 
 
@@ -71,7 +73,7 @@ def env1_rows(false_negative_at=None):
                 for frame in range(4):
                     fn = 1 if false_negative_at == (s, res, repeat, frame) else 0
                     rows.append(frame_row("env1", s, res, 50, repeat, frame, base + frame * (1 + repeat),
-                                          1 + frame % 3 if s == "ours" else 2, fn))
+                                          1 + frame % 3 if s == "ours" else 2, fn, ENV1_PAIRS.get(s, 0)))
     return rows
 
 
@@ -193,6 +195,31 @@ class ReportOnSyntheticRuns(unittest.TestCase):
         differs = self.report[self.report.index("Differs:"):]
         self.assertTrue(expected in differs, expected)
         self.assertTrue("ours (8.75 ms) < cullide_bvh (16.25 ms) < cullide (27.25 ms)" in self.report)
+
+
+    def test_quick_cullide_row_says_the_thesis_has_no_numbers(self):
+        # Beside cullide, cullide_bvh and ours, with its own time and ratio but no thesis cell borrowed.
+        rows = read_csv_rows(self.dir / "env1" / "comparison.csv")
+        quick = rows[("cd_time_ms", "average", "quick_cullide")]
+        self.assertAlmostEqual(float(quick["500"]), 20.25, places=4)
+        self.assertEqual(quick["500_thesis"], "")
+        ratio = rows[("speedup", "average", "quick_cullide/ours")]
+        self.assertAlmostEqual(float(ratio["800"]), 28.25 / 10.25, places=3)
+        self.assertEqual(ratio["800_thesis"], "")
+        md = (self.dir / "env1" / "comparison.md").read_text()
+        lines = md.splitlines()
+        order = [line.split("|")[1].strip() for line in lines if line.startswith("| ")][1:6]
+        self.assertEqual(order, ["cullide", "cullide_bvh", "quick_cullide (no thesis numbers)", "cis", "ours"])
+        self.assertIn("| quick_cullide (no thesis numbers) | 20.25 | 28.25 |", md)
+        self.assertIn("gives no numbers for it in Table 4.1", md)
+        self.assertIn("`quick_cullide` (Quick-CULLIDE)", self.report)
+        self.assertIn(f"| quick_cullide / ours, average (no thesis numbers) | {20.25 / 7.25:.2f} |", md)
+        # env3 ran without it: no such note there.
+        self.assertNotIn("quick_cullide", (self.dir / "env3" / "comparison.md").read_text())
+
+    def test_findings_compare_pairs_left_for_the_exact_phase(self):
+        self.assertIn("Object pairs left for the exact phase's triangle tests (pairs_tested, mean per frame): "
+                      "cullide 5.00, cullide_bvh 0.00, quick_cullide 3.00, ours 0.00.", self.report)
 
 
 class ReportOnBadInput(unittest.TestCase):
