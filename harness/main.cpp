@@ -1,4 +1,5 @@
 // cdbench: the command line. Exit codes: 0 success, 1 failure while running, 2 bad usage or input.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -134,8 +135,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*list) {
-      for (const auto& name : cdb::StrategyRegistry::builtin().names())
-        std::printf("%-12s %s\n", name.c_str(), cdb::StrategyRegistry::builtin().description(name).c_str());
+      const auto names = cdb::StrategyRegistry::builtin().names();
+      int width = 0;
+      for (const auto& name : names) width = std::max(width, static_cast<int>(name.size()));
+      for (const auto& name : names)
+        std::printf("%-*s %s\n", width, name.c_str(), cdb::StrategyRegistry::builtin().description(name).c_str());
       return 0;
     }
     if (*checkCmd) {
