@@ -83,6 +83,18 @@ TEST(TruthComparison, CountsMissesSplitsAndExtras) {
   EXPECT_EQ(c.cullingMisses, 2u);
 }
 
+TEST(TruthComparison, ASetThatListsItsPairsHoldsOnlyThosePairsTogether) {
+  const std::vector<ObjectPair> truth = {{0, 1}, {1, 2}, {2, 3}};
+  PotentiallyCollidingSets sets(2);
+  // Members 0, 1, 2 of objects 2, 1, 0: pairs {1, 2} and {0, 2} listed, {0, 1} freed.
+  sets[0].members = {{2, {}}, {1, {}}, {0, {}}};
+  sets[0].pairs = std::vector<MemberPair>{{1, 0, {}, {}}, {2, 0, {}, {}}};
+  sets[1].members = {{2, {}}, {3, {}}};  // an ordinary set: 2 and 3 together
+  const auto c = compareWithTruth(truth, truth, sets, 4);
+  EXPECT_EQ(c.falseNegatives, 0u);
+  EXPECT_EQ(c.cullingMisses, 1u);  // {0, 1}: both in the first set, but not listed there
+}
+
 TEST(TruthComparison, AStrategyThatDecidesThePairsMissesInCullingWhatItMisses) {
   const std::vector<ObjectPair> truth = {{0, 1}, {2, 3}, {4, 5}};
   CullingResult peer;
