@@ -27,14 +27,27 @@ void QuickCullide::attach(const SceneGeometry& scene, VisibilityBackend& backend
 // Pair (a, b), a before b: b fully visible in pass 1 saw every object before it, a in pass 2 every
 // object after it; either one proves the pair free. An object left in no pair touches nothing
 // still drawn and leaves the passes, as CULLIDE's pruned objects do.
-void QuickCullide::classifyObjects(const Eigen::Vector3d& axis) {
-  if (objectPairs_.empty()) return;
+void QuickCullide::classifyObjects(const Eigen::Vector3d& axis, bool firstAxis) {
+  if (objects_.size() < 2 || (!firstAxis && objectPairs_.empty())) {
+    objects_.clear();
+    objectPairs_.clear();
+    return;
+  }
   const ViewSpec view{axis, bounds_.unionOf(objects_), options_.resolution};
   objectPassAnswers(*backend_, *scene_, objects_, PassPair::fresh(view), answers_);
-  for (std::uint32_t i = 0; i < objects_.size(); ++i) positionOf_[objects_[i]] = i;
-  std::erase_if(objectPairs_, [&](const ObjectPair& p) {
-    return answers_.first[positionOf_[p.b]] || answers_.second[positionOf_[p.a]];
-  });
+  if (firstAxis) {
+    // Every pair is a candidate before the first axis: list those it leaves, in pass-1 order.
+    objectPairs_.clear();
+    for (std::size_t i = 0; i < objects_.size(); ++i)
+      if (!answers_.second[i])
+        for (std::size_t j = i + 1; j < objects_.size(); ++j)
+          if (!answers_.first[j]) objectPairs_.push_back({objects_[i], objects_[j]});
+  } else {
+    for (std::uint32_t i = 0; i < objects_.size(); ++i) positionOf_[objects_[i]] = i;
+    std::erase_if(objectPairs_, [&](const ObjectPair& p) {
+      return answers_.first[positionOf_[p.b]] || answers_.second[positionOf_[p.a]];
+    });
+  }
 
   objects_.clear();
   for (const auto& p : objectPairs_) {
@@ -183,13 +196,9 @@ CullingResult QuickCullide::cull(const FrameInput& frame) {
   backend_->setPoses(frame.poses);
   bounds_.update(frame.poses);
 
-  const auto n = static_cast<ObjectId>(scene_->objectCount());
-  objects_.resize(n);
-  for (ObjectId o = 0; o < n; ++o) objects_[o] = o;
-  objectPairs_.clear();
-  for (ObjectId a = 0; a < n; ++a)
-    for (ObjectId b = a + 1; b < n; ++b) objectPairs_.push_back({a, b});
-  for (const auto& axis : kAxes) classifyObjects(axis);
+  objects_.resize(scene_->objectCount());
+  for (std::size_t o = 0; o < objects_.size(); ++o) objects_[o] = static_cast<ObjectId>(o);
+  for (std::size_t k = 0; k < kAxes.size(); ++k) classifyObjects(kAxes[k], k == 0);
 
   // Object pairs into member pairs: members in pass-1 order, every triangle on both sides.
   members_ = objects_;

@@ -38,7 +38,7 @@ class QuickCullide final : public CullingStrategy {
     Side firstSide, secondSide;
   };
 
-  void classifyObjects(const Eigen::Vector3d& axis);
+  void classifyObjects(const Eigen::Vector3d& axis, bool firstAxis);
   void classifyTriangles(const Eigen::Vector3d& axis);
   // Members with no pair left are dropped; pairs renumbered.
   void dropUnpairedMembers();
