@@ -2,6 +2,7 @@
 
 #include "core/Errors.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/cpu/CpuRasterBackend.h"
 
 namespace cdb {
 
@@ -13,6 +14,11 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           {.needsGl = true},
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlOcclusionQueryBackend>(resources.gl(), options);
+          });
+    r.add("cpu",
+          "exact conservative CPU depth rasteriser (SIMD, threads); needs no GL",
+          {.needsGl = false}, [](BackendResources&, const VisibilityOptions& options) {
+            return std::make_unique<CpuRasterBackend>(options);
           });
     return r;
   }();
