@@ -1,6 +1,8 @@
 #include "culling/visibility/cpu/CpuPassCommands.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <span>
 
 namespace cdb {
@@ -55,6 +57,42 @@ std::size_t boxTriangles(const ScreenMatrix& cubeToScreen, CpuCommand::Role role
   return n;
 }
 
+// Whether a triangle of a closed mesh can decide its command. Along every line of sight a closed
+// surface is crossed as often toward the viewer as away from it (its winding number is 0 far
+// away), so behind each crossing of a face turned toward the viewer lies one of a face turned away,
+// at the same screen point: in every pixel square, the farthest depth of the mesh over what it
+// covers is reached on a face turned away (what a test needs) and the nearest on one turned
+// toward the viewer (a write). Faces near edge-on (or collapsed) are kept for both. The screen
+// frame (x, y, key) is right-handed, so a counter-clockwise triangle in x, y faces along +key.
+inline bool drawnForRole(const ScreenTriangle& t, std::int8_t winding, CpuCommand::Role role) {
+  if (winding == 0) return true;
+  const double e1x = t.x[1] - t.x[0], e1y = t.y[1] - t.y[0];
+  const double e2x = t.x[2] - t.x[0], e2y = t.y[2] - t.y[0];
+  const double facing = winding * (e1x * e2y - e1y * e2x);  // > 0: turned away from the viewer
+  // Far above double's rounding of the screen coordinates (2^-50 relative).
+  const double edgeOn = 1e-9 * (std::abs(e1x) + std::abs(e1y)) * (std::abs(e2x) + std::abs(e2y));
+  return role == CpuCommand::Role::Test ? facing >= -edgeOn : facing <= edgeOn;
+}
+
+// Screen triangles of the command's mesh triangles [done, done + kChunk) that it draws; returns
+// how many, and advances `done` past those read.
+std::size_t fillChunk(const CpuCommandList& list, const CpuCommand& c, std::uint32_t& done,
+                      std::array<ScreenTriangle, kChunk>& chunk) {
+  const Mesh& mesh = *c.mesh;
+  const std::uint32_t n = std::min<std::uint32_t>(kChunk, c.count - done);
+  std::size_t kept = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t tri = c.source == CpuCommand::Source::Range
+                                  ? c.first + done + i
+                                  : list.listed[c.first + done + i];
+    const Triangle& t = mesh.triangles[tri];
+    for (int v = 0; v < 3; ++v) toScreen(c.toScreen, mesh.vertices[t[v]], chunk[kept], v);
+    if (drawnForRole(chunk[kept], c.winding, c.role)) ++kept;
+  }
+  done += n;
+  return kept;
+}
+
 ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box) {
   ScreenMatrix m;
   m.leftCols<3>() = objectToScreen.leftCols<3>() * box.axes * box.halfExtents.asDiagonal();
@@ -77,24 +115,17 @@ void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandL
     }
     return;
   }
-  const Mesh& mesh = *c.mesh;
   for (std::uint32_t done = 0; done < c.count;) {
-    const std::uint32_t n = std::min<std::uint32_t>(kChunk, c.count - done);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const std::uint32_t tri = c.source == CpuCommand::Source::Range
-                                    ? c.first + done + i
-                                    : list.listed[c.first + done + i];
-      const Triangle& t = mesh.triangles[tri];
-      for (int v = 0; v < 3; ++v) toScreen(c.toScreen, mesh.vertices[t[v]], chunk[i], v);
-    }
+    const std::uint32_t at = done;
+    const std::size_t n = fillChunk(list, c, done, chunk);
     const std::span<const ScreenTriangle> tris(chunk.data(), n);
     if (c.answerEach) {
-      testEachTriangle(buffer, raster, tris, answers + c.query + done, work);
+      // Every triangle is kept (winding is 0 for batches): entry i answers triangle at + i.
+      testEachTriangle(buffer, raster, tris, answers + c.query + at, work);
     } else if (testTrianglesUntilOccluded(buffer, raster, tris, work) < n) {
       answers[c.query] = 0;
       return;  // one occluded sample decides the piece
     }
-    done += n;
   }
 }
 
@@ -109,18 +140,9 @@ void runWrite(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommand
     }
     return;
   }
-  const Mesh& mesh = *c.mesh;
   for (std::uint32_t done = 0; done < c.count;) {
-    const std::uint32_t n = std::min<std::uint32_t>(kChunk, c.count - done);
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const std::uint32_t tri = c.source == CpuCommand::Source::Range
-                                    ? c.first + done + i
-                                    : list.listed[c.first + done + i];
-      const Triangle& t = mesh.triangles[tri];
-      for (int v = 0; v < 3; ++v) toScreen(c.toScreen, mesh.vertices[t[v]], chunk[i], v);
-    }
+    const std::size_t n = fillChunk(list, c, done, chunk);
     writeTriangles(buffer, raster, std::span<const ScreenTriangle>(chunk.data(), n), work);
-    done += n;
   }
 }
 

@@ -32,6 +32,10 @@ struct CpuCommand {
   std::uint32_t first = 0;
   std::uint32_t count = 0;
   QueryIndex query = 0;  // the (first) answer's index
+  // Whole closed meshes (a one-answer test or a write of every triangle): +1 when the mesh winds
+  // counter-clockwise seen from outside, -1 clockwise; then only the triangles facing away
+  // (tests) or toward the viewer (writes) are drawn. 0: every triangle.
+  std::int8_t winding = 0;
   ScreenMatrix toScreen = ScreenMatrix::Zero();
 };
 

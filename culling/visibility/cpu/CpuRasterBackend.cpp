@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/Errors.h"
+#include "scenes/MeshMeasures.h"
 
 namespace cdb {
 
@@ -42,6 +43,11 @@ void CpuRasterBackend::attachScene(const SceneGeometry& scene) {
           throw InputError("mesh '" + m.name + "' has a triangle index " + std::to_string(i) +
                            " beyond its " + std::to_string(m.vertices.size()) + " vertices");
   scene_ = &scene;
+  meshWinding_.clear();
+  for (const Mesh& m : scene.meshes) {
+    const double volume = isClosedMesh(m) ? signedVolume(m) : 0.0;
+    meshWinding_.push_back(volume > 0 ? 1 : volume < 0 ? -1 : 0);
+  }
   poses_.assign(scene.objectCount(), Eigen::Matrix4d::Identity());
   lastResolution_ = 0;
 }
@@ -147,6 +153,13 @@ CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source s
   return c;
 }
 
+std::int8_t CpuRasterBackend::wholeMeshWinding(const MeshRange& range) const {
+  const SceneObject& o = scene_->objects[range.object];
+  const bool whole = range.firstTriangle == 0 &&
+                     range.triangleCount == scene_->meshes[o.mesh].triangleCount();
+  return whole ? meshWinding_[o.mesh] : std::int8_t{0};
+}
+
 QueryIndex CpuRasterBackend::issue(std::uint32_t count) {
   const QueryIndex first = issued_;
   issued_ += count;
@@ -160,6 +173,7 @@ QueryIndex CpuRasterBackend::queryRange(const MeshRange& range) {
   if (range.triangleCount == 0) return q;  // no sample: fully visible
   CpuCommand& c = record(CpuCommand::Role::Test, CpuCommand::Source::Range, range.object);
   c.first = range.firstTriangle, c.count = range.triangleCount, c.query = q;
+  c.winding = wholeMeshWinding(range);
   ++counters_.draws;
   counters_.trianglesDrawn += range.triangleCount;
   return q;
@@ -215,6 +229,7 @@ void CpuRasterBackend::writeRange(const MeshRange& range) {
   if (range.triangleCount == 0) return;
   CpuCommand& c = record(CpuCommand::Role::Write, CpuCommand::Source::Range, range.object);
   c.first = range.firstTriangle, c.count = range.triangleCount;
+  c.winding = wholeMeshWinding(range);
   ++counters_.draws;
   counters_.trianglesDrawn += range.triangleCount;
 }

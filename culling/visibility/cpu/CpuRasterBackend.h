@@ -66,6 +66,8 @@ class CpuRasterBackend final : public VisibilityBackend {
   void checkListed(ObjectId object, std::span<const std::uint32_t> triangles) const;
   // A command of the open pass, with the object's matrix into its screen space.
   CpuCommand& record(CpuCommand::Role role, CpuCommand::Source source, ObjectId object);
+  // CpuCommand::winding of a draw of `range`.
+  [[nodiscard]] std::int8_t wholeMeshWinding(const MeshRange& range) const;
   // Numbers `count` answers (1 until a test says otherwise).
   QueryIndex issue(std::uint32_t count);
   // Runs every recorded pass; their answers join those awaiting the next fetch.
@@ -80,6 +82,8 @@ class CpuRasterBackend final : public VisibilityBackend {
   VisibilityCounters counters_;
 
   const SceneGeometry* scene_ = nullptr;
+  // Per mesh of the scene: CpuCommand::winding for a draw of all of it.
+  std::vector<std::int8_t> meshWinding_;
   std::vector<Eigen::Matrix4d> poses_;
 
   // The open pass (kept across fetches: draws may go on in it).

@@ -162,29 +162,54 @@ void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRast
   }
 }
 
+// Step 1 of the set-up was enough: every key the test can have is nearer than everything stored
+// under its box (visible), or every key a write can have is at or behind it (no change).
+bool decidedByTiles(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
+                    RasterRole role) {
+  const int tx0 = r.x0 / kTile, tx1 = r.x1 / kTile, ty0 = r.y0 / kTile, ty1 = r.y1 / kTile;
+  for (int ty = ty0; ty <= ty1; ++ty)
+    for (int tx = tx0; tx <= tx1; ++tx) {
+      const TileKeys stored = tileKeys(buffer, buffer.tileIndex(tx, ty), pass.sign);
+      if (role == RasterRole::Test ? r.zHi >= stored.nearest : r.zLo < stored.farthest)
+        return false;
+    }
+  return true;
+}
+
+HWY_INLINE bool testTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
+                             const ScreenTriangle& t, RasterWork& work) {
+  TriangleRaster r;
+  if (!setupBounds(t, pass, RasterRole::Test, r) ||
+      decidedByTiles(buffer, pass, r, RasterRole::Test))
+    return false;
+  setupCoverage(t, pass, RasterRole::Test, r);
+  return testOne(buffer, pass, r, work);
+}
+
 std::size_t TestUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                               const ScreenTriangle* triangles, std::size_t count,
                               RasterWork& work) {
-  TriangleRaster r;
   for (std::size_t i = 0; i < count; ++i)
-    if (setupTriangle(triangles[i], pass, RasterRole::Test, r) && testOne(buffer, pass, r, work))
-      return i;
+    if (testTriangle(buffer, pass, triangles[i], work)) return i;
   return count;
 }
 
 void TestEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
               std::size_t count, std::uint8_t* fullyVisible, RasterWork& work) {
-  TriangleRaster r;
   for (std::size_t i = 0; i < count; ++i)
-    if (setupTriangle(triangles[i], pass, RasterRole::Test, r) && testOne(buffer, pass, r, work))
-      fullyVisible[i] = 0;
+    if (testTriangle(buffer, pass, triangles[i], work)) fullyVisible[i] = 0;
 }
 
 void WriteAll(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
               std::size_t count, RasterWork& work) {
   TriangleRaster r;
-  for (std::size_t i = 0; i < count; ++i)
-    if (setupTriangle(triangles[i], pass, RasterRole::Write, r)) writeOne(buffer, pass, r, work);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!setupBounds(triangles[i], pass, RasterRole::Write, r) ||
+        decidedByTiles(buffer, pass, r, RasterRole::Write))
+      continue;
+    setupCoverage(triangles[i], pass, RasterRole::Write, r);
+    writeOne(buffer, pass, r, work);
+  }
 }
 
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }

@@ -8,7 +8,9 @@
 // rounding of those float evaluations are added so that rounding can only add pixels and only
 // move depths toward "occluded". Header-only so that every SIMD target inlines it.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace cdb {
@@ -55,16 +57,25 @@ namespace raster_detail {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The float nearest to v that is not below (above) it.
+// The next float above (below) a finite f, by its bits (std::nextafter is a library call, and
+// this runs a few times per triangle).
+inline float nextUp(float f) {
+  if (f == 0.f) return std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.f ? bits + 1u : bits - 1u);
+}
+inline float nextDown(float f) { return -nextUp(-f); }
+
+// The float nearest to v that is not below (above) it; infinities stay as they are.
 inline float roundUp(double v) {
-  float f = static_cast<float>(v);
-  if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
+  const float f = static_cast<float>(v);
+  if (!(static_cast<double>(f) < v)) return f;
+  return std::isfinite(f) ? nextUp(f) : std::numeric_limits<float>::lowest();
 }
 inline float roundDown(double v) {
-  float f = static_cast<float>(v);
-  if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
+  const float f = static_cast<float>(v);
+  if (!(static_cast<double>(f) > v)) return f;
+  return std::isfinite(f) ? nextDown(f) : std::numeric_limits<float>::max();
 }
 
 // Bound on the error of evaluating a dx + b dy + c in float (a, b, c rounded to float, two or
@@ -84,10 +95,16 @@ inline bool allFinite(const ScreenTriangle& t) {
 
 }  // namespace raster_detail
 
-// Fills `r` for `t`; false when the triangle covers no pixel of the buffer (off-screen, or a
-// non-finite vertex, or in raw mode a zero-area triangle, which GL does not rasterise either).
-inline bool setupTriangle(const ScreenTriangle& t, const RasterPass& pass, RasterRole role,
-                          TriangleRaster& r) {
+// Set-up runs in two steps, so that a triangle whose tiles already decide it (a test nearer than
+// everything stored under its box, a write behind it) costs only the first. Both are forced inline
+// into the SIMD loops' targets (CpuRasteriser), which compile them with the target's instructions.
+#define CDB_RASTER_INLINE [[gnu::always_inline]] inline
+
+// Step 1: the pixel box and the key bounds r.zLo, r.zHi. False when the triangle covers no pixel
+// of the buffer (off-screen, or a non-finite vertex, or in raw mode a zero-area triangle, which GL
+// does not rasterise either).
+CDB_RASTER_INLINE bool setupBounds(const ScreenTriangle& t, const RasterPass& pass, RasterRole role,
+                                   TriangleRaster& r) {
   using namespace raster_detail;
   if (!allFinite(t)) return false;
   const bool conservative = pass.conservative;
@@ -105,17 +122,44 @@ inline bool setupTriangle(const ScreenTriangle& t, const RasterPass& pass, Raste
   bx0 = std::max(bx0, 0.0), by0 = std::max(by0, 0.0);
   bx1 = std::min(bx1, last), by1 = std::min(by1, last);
   if (bx0 > bx1 || by0 > by1) return false;
+  if (!conservative) {
+    const double det =
+        (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
+    if (det == 0.0) return false;
+  }
   r.x0 = static_cast<int>(bx0), r.y0 = static_cast<int>(by0);
   r.x1 = static_cast<int>(bx1), r.y1 = static_cast<int>(by1);
-  const double ox = bx0, oy = by0;
+
+  // The key over the triangle lies within its vertex keys [kMin, kMax] (it is their convex
+  // hull); then the depth epsilon toward "occluded" (conservative) or the raw offset (tests).
+  const double kMin = std::min({t.k[0], t.k[1], t.k[2]}), kMax = std::max({t.k[0], t.k[1], t.k[2]});
+  const bool test = role == RasterRole::Test;
+  const double shift = conservative ? (test ? pass.depthEpsilon : -pass.depthEpsilon)
+                                    : (test ? pass.rawTestOffset : 0.0);
+  // Depth clamping (GL_DEPTH_CLAMP) of a value clamped to [lo, hi] is the value clamped to the
+  // clamped bounds.
+  const auto clampToPass = [&](float v) { return std::clamp(v, pass.keyLo, pass.keyHi); };
+  if (test)
+    r.zLo = clampToPass(roundUp(kMin + shift)), r.zHi = clampToPass(roundUp(kMax + shift));
+  else
+    r.zLo = clampToPass(roundDown(kMin + shift)), r.zHi = clampToPass(roundDown(kMax + shift));
+  return true;
+}
+
+// Step 2: edge functions and the depth plane, for a triangle step 1 accepted.
+CDB_RASTER_INLINE void setupCoverage(const ScreenTriangle& t, const RasterPass& pass,
+                                     RasterRole role, TriangleRaster& r) {
+  using namespace raster_detail;
+  const bool conservative = pass.conservative;
+  const double m = conservative ? pass.marginPx : 0.0;
+  const double ox = r.x0, oy = r.y0;
   // Pixels and SIMD lanes evaluated lie within the box grown by a tile (lanes past the box are
   // masked, but their values are computed): the extent the float error bounds use.
-  const double spanX = bx1 - bx0 + 8.0, spanY = by1 - by0 + 8.0;
+  const double spanX = r.x1 - r.x0 + 8.0, spanY = r.y1 - r.y0 + 8.0;
 
   const double e1x = t.x[1] - t.x[0], e1y = t.y[1] - t.y[0];
   const double e2x = t.x[2] - t.x[0], e2y = t.y[2] - t.y[0];
   const double det = e1x * e2y - e1y * e2x;
-  if (!conservative && det == 0.0) return false;
 
   // Coverage.
   if (conservative) {
@@ -165,60 +209,52 @@ inline bool setupTriangle(const ScreenTriangle& t, const RasterPass& pass, Raste
     }
   }
 
-  // Depth. The key over the triangle is a plane k0 + gx (x - x0) + gy (y - y0) bounded by the
-  // vertex keys [kMin, kMax] (the triangle is their convex hull).
-  const double kMin = std::min({t.k[0], t.k[1], t.k[2]}), kMax = std::max({t.k[0], t.k[1], t.k[2]});
+  // Depth: the plane k0 + gx (x - x0) + gy (y - y0) of the keys, clamped to [zLo, zHi].
   const bool test = role == RasterRole::Test;
   // A usable plane: the triangle is not too close to edge-on (sine of its screen angle above
   // 2^-20), so the gradient is well conditioned; otherwise the vertex bound alone is used.
   const double scale = std::sqrt((e1x * e1x + e1y * e1y) * (e2x * e2x + e2y * e2y));
-  double gx = 0.0, gy = 0.0, zc = test ? kMax : kMin;
-  double shift = 0.0;  // toward "occluded": tests farther, writes nearer
-  if (std::abs(det) > scale * (1.0 / (1 << 20)) && std::isfinite(det)) {
-    const double dk1 = t.k[1] - t.k[0], dk2 = t.k[2] - t.k[0];
-    gx = (dk1 * e2y - dk2 * e1y) / det;
-    gy = (dk2 * e1x - dk1 * e2x) / det;
-    if (conservative) {
-      // The plane over the grown pixel square at (x, y) lies within its values at the square's
-      // corners: the farthest corner bounds a test, the nearest a write. Its maximum over the
-      // covered part of the square is at most that, and at most kMax (the clamp below).
-      const double grow = m * (std::abs(gx) + std::abs(gy));
-      const double corner = test ? std::max(gx, 0.0) + std::max(gy, 0.0) + grow
-                                 : std::min(gx, 0.0) + std::min(gy, 0.0) - grow;
-      zc = t.k[0] + gx * (ox - t.x[0]) + gy * (oy - t.y[0]) + corner;
-    } else {
-      zc = t.k[0] + gx * (ox + 0.5 - t.x[0]) + gy * (oy + 0.5 - t.y[0]);
-    }
-    // The float evaluation's error (and the gradient's, 2^-32 relative at this conditioning).
-    const double tolZ =
-        kFloatDepthError * (std::abs(zc) + std::abs(gx) * spanX + std::abs(gy) * spanY);
-    shift = tolZ;
+  if (!(std::abs(det) > scale * (1.0 / (1 << 20)))) {
+    r.za = r.zb = 0.f;
+    r.zc = test ? r.zHi : r.zLo;
+    return;
   }
+  const double dk1 = t.k[1] - t.k[0], dk2 = t.k[2] - t.k[0];
+  const double gx = (dk1 * e2y - dk2 * e1y) / det;
+  const double gy = (dk2 * e1x - dk1 * e2x) / det;
+  double zc;
+  if (conservative) {
+    // The plane over the grown pixel square at (x, y) lies within its values at the square's
+    // corners: the farthest corner bounds a test, the nearest a write. Its maximum over the
+    // covered part of the square is at most that, and at most kMax (the clamp).
+    const double grow = m * (std::abs(gx) + std::abs(gy));
+    const double corner = test ? std::max(gx, 0.0) + std::max(gy, 0.0) + grow
+                               : std::min(gx, 0.0) + std::min(gy, 0.0) - grow;
+    zc = t.k[0] + gx * (ox - t.x[0]) + gy * (oy - t.y[0]) + corner;
+  } else {
+    zc = t.k[0] + gx * (ox + 0.5 - t.x[0]) + gy * (oy + 0.5 - t.y[0]);
+  }
+  // The float evaluation's error (and the gradient's, 2^-32 relative at this conditioning),
+  // then the epsilon or offset toward "occluded".
+  double shift = kFloatDepthError * (std::abs(zc) + std::abs(gx) * spanX + std::abs(gy) * spanY);
   if (conservative)
     shift += pass.depthEpsilon;  // transform rounding and float32 storage, as GL's bound
   else if (test)
     shift += pass.rawTestOffset;
-  const double sign = test ? 1.0 : -1.0;
-  const double lo = kMin + sign * (conservative ? pass.depthEpsilon : 0.0) +
-                    (test && !conservative ? pass.rawTestOffset : 0.0);
-  const double hi = kMax + sign * (conservative ? pass.depthEpsilon : 0.0) +
-                    (test && !conservative ? pass.rawTestOffset : 0.0);
-  zc += sign * shift;
-  // Depth clamping (GL_DEPTH_CLAMP) of a value clamped to [lo, hi] is the value clamped to the
-  // clamped bounds.
-  const auto clampToPass = [&](float v) { return std::clamp(v, pass.keyLo, pass.keyHi); };
-  if (test) {
-    r.zLo = clampToPass(roundUp(lo)), r.zHi = clampToPass(roundUp(hi));
-    r.zc = roundUp(zc);
-  } else {
-    r.zLo = clampToPass(roundDown(lo)), r.zHi = clampToPass(roundDown(hi));
-    r.zc = roundDown(zc);
-  }
+  zc += test ? shift : -shift;
+  r.zc = test ? roundUp(zc) : roundDown(zc);
   r.za = static_cast<float>(gx), r.zb = static_cast<float>(gy);
   if (!std::isfinite(r.za) || !std::isfinite(r.zb) || !std::isfinite(r.zc)) {
     r.za = r.zb = 0.f;  // the vertex bound alone
     r.zc = test ? r.zHi : r.zLo;
   }
+}
+
+// Both steps.
+CDB_RASTER_INLINE bool setupTriangle(const ScreenTriangle& t, const RasterPass& pass,
+                                     RasterRole role, TriangleRaster& r) {
+  if (!setupBounds(t, pass, role, r)) return false;
+  setupCoverage(t, pass, role, r);
   return true;
 }
 
