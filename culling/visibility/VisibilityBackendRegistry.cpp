@@ -25,6 +25,19 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
   return registry;
 }
 
+std::string backendNameOf(const CullingSpec& culling) {
+  return culling.visibility.empty() ? std::string(VisibilityBackendRegistry::kDefault)
+                                    : culling.visibility;
+}
+
+VisibilityOptions visibilityOptionsOf(const CullingSpec& culling) {
+  VisibilityOptions o;
+  o.conservative = culling.conservative;
+  o.rawDepthOffset = culling.rawDepthOffset;
+  o.threads = culling.threads;
+  return o;
+}
+
 void VisibilityBackendRegistry::add(std::string name, std::string description,
                                     BackendTraits traits, Factory factory) {
   entries_.push_back({std::move(name), std::move(description), traits, std::move(factory)});

@@ -10,6 +10,7 @@
 
 #include "culling/visibility/BackendResources.h"
 #include "culling/visibility/VisibilityBackend.h"
+#include "scenes/ScenarioConfig.h"
 
 namespace cdb {
 
@@ -50,5 +51,10 @@ class VisibilityBackendRegistry {
   const Entry* find(std::string_view name) const;
   std::vector<Entry> entries_;
 };
+
+// The backend a config's culling section names (the default when it names none).
+[[nodiscard]] std::string backendNameOf(const CullingSpec& culling);
+// The backend options a config's culling section sets.
+[[nodiscard]] VisibilityOptions visibilityOptionsOf(const CullingSpec& culling);
 
 }  // namespace cdb
