@@ -44,29 +44,51 @@ inline bool tileMayBeCovered(const TriangleRaster& r, int tx, int ty) {
   return true;
 }
 
-// Per-triangle constants of the row loop.
-struct RowSetup {
-  int cx0, cx1;  // pixel columns of the box inside the tile
-  float dy;
+// The triangle's constants as vectors, in registers for the whole triangle (read through the
+// TriangleRaster the compiler would reload them after every store to the depth buffer).
+struct Lanes {
+  hn::Vec<D> a[3], b[3], c[3], lo[3], hi[3];
+  hn::Vec<D> za, zb, zc, zLo, zHi;
 };
-
-// Covered lanes of one step (lx.. of the tile row), given the lanes' dx.
-HWY_INLINE hn::Mask<D> covered(const TriangleRaster& r, const RowSetup& row, hn::Vec<D> dx) {
+HWY_INLINE Lanes lanesOf(const TriangleRaster& r) {
   const D d;
-  auto m = hn::And(hn::Ge(dx, hn::Set(d, static_cast<float>(row.cx0 - r.x0))),
-                   hn::Le(dx, hn::Set(d, static_cast<float>(row.cx1 - r.x0))));
+  Lanes l;
   for (int e = 0; e < 3; ++e) {
-    const float base = r.c[e] + r.b[e] * row.dy;
-    const auto f = hn::MulAdd(hn::Set(d, r.a[e]), dx, hn::Set(d, base));
-    m = hn::And(m, hn::And(hn::Ge(f, hn::Set(d, r.lo[e])), hn::Le(f, hn::Set(d, r.hi[e]))));
+    l.a[e] = hn::Set(d, r.a[e]), l.b[e] = hn::Set(d, r.b[e]), l.c[e] = hn::Set(d, r.c[e]);
+    l.lo[e] = hn::Set(d, r.lo[e]), l.hi[e] = hn::Set(d, r.hi[e]);
+  }
+  l.za = hn::Set(d, r.za), l.zb = hn::Set(d, r.zb), l.zc = hn::Set(d, r.zc);
+  l.zLo = hn::Set(d, r.zLo), l.zHi = hn::Set(d, r.zHi);
+  return l;
+}
+
+// Per-row values: the box's columns inside the tile, and the edge and depth functions at the
+// row's dx = 0 (a dx + b dy + c with dy fixed).
+struct RowSetup {
+  int cx0, cx1;
+  hn::Vec<D> base[3];
+  hn::Vec<D> zBase;
+};
+HWY_INLINE void startRow(const Lanes& l, int y, const TriangleRaster& r, RowSetup& row) {
+  const D d;
+  const auto dy = hn::Set(d, static_cast<float>(y - r.y0));
+  for (int e = 0; e < 3; ++e) row.base[e] = hn::MulAdd(l.b[e], dy, l.c[e]);
+  row.zBase = hn::MulAdd(l.zb, dy, l.zc);
+}
+
+// Covered lanes of one step, given the lanes' dx and the box's columns as dx.
+HWY_INLINE hn::Mask<D> covered(const Lanes& l, const RowSetup& row, hn::Vec<D> dx,
+                               hn::Vec<D> boxLo, hn::Vec<D> boxHi) {
+  auto m = hn::And(hn::Ge(dx, boxLo), hn::Le(dx, boxHi));
+  for (int e = 0; e < 3; ++e) {
+    const auto f = hn::MulAdd(l.a[e], dx, row.base[e]);
+    m = hn::And(m, hn::And(hn::Ge(f, l.lo[e]), hn::Le(f, l.hi[e])));
   }
   return m;
 }
 
-HWY_INLINE hn::Vec<D> keyAt(const TriangleRaster& r, const RowSetup& row, hn::Vec<D> dx) {
-  const D d;
-  const auto z = hn::MulAdd(hn::Set(d, r.za), dx, hn::Set(d, r.zc + r.zb * row.dy));
-  return hn::Min(hn::Max(z, hn::Set(d, r.zLo)), hn::Set(d, r.zHi));
+HWY_INLINE hn::Vec<D> keyAt(const Lanes& l, const RowSetup& row, hn::Vec<D> dx) {
+  return hn::Min(hn::Max(hn::MulAdd(l.za, dx, row.zBase), l.zLo), l.zHi);
 }
 
 // True when some covered sample is at or behind the stored depth.
@@ -77,6 +99,7 @@ bool testOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaste
   const int tx0 = r.x0 / kTile, tx1 = r.x1 / kTile, ty0 = r.y0 / kTile, ty1 = r.y1 / kTile;
   const bool oneTile = tx0 == tx1 && ty0 == ty1;
   const auto sign = hn::Set(d, pass.sign);
+  const Lanes l = lanesOf(r);
   for (int ty = ty0; ty <= ty1; ++ty) {
     for (int tx = tx0; tx <= tx1; ++tx) {
       const std::size_t index = buffer.tileIndex(tx, ty);
@@ -89,20 +112,23 @@ bool testOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaste
       const bool allBehind = r.zLo >= stored.farthest;
       const bool uniform = buffer.uniform(index);
       const float* values = buffer.tile(index);
-      RowSetup row{std::max(r.x0, tx * kTile), std::min(r.x1, tx * kTile + kTile - 1), 0.f};
+      RowSetup row;
+      row.cx0 = std::max(r.x0, tx * kTile), row.cx1 = std::min(r.x1, tx * kTile + kTile - 1);
+      const auto boxLo = hn::Set(d, static_cast<float>(row.cx0 - r.x0));
+      const auto boxHi = hn::Set(d, static_cast<float>(row.cx1 - r.x0));
       const int ry0 = std::max(r.y0, ty * kTile), ry1 = std::min(r.y1, ty * kTile + kTile - 1);
       for (int y = ry0; y <= ry1; ++y) {
-        row.dy = static_cast<float>(y - r.y0);
+        startRow(l, y, r, row);
         work.pixelsTested += static_cast<std::uint64_t>(row.cx1 - row.cx0 + 1);
         for (int lx = 0; lx < kTile; lx += n) {
           if (tx * kTile + lx > row.cx1 || tx * kTile + lx + n - 1 < row.cx0) continue;
           const auto dx = hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0));
-          const auto m = covered(r, row, dx);
+          const auto m = covered(l, row, dx, boxLo, boxHi);
           if (allBehind) {
             if (!hn::AllFalse(d, m)) return true;
             continue;
           }
-          const auto key = keyAt(r, row, dx);
+          const auto key = keyAt(l, row, dx);
           const auto storedKey =
               uniform ? hn::Set(d, stored.nearest)
                       : hn::Mul(hn::LoadU(d, values + (y % kTile) * kTile + lx), sign);
@@ -121,6 +147,7 @@ void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRast
   const int tx0 = r.x0 / kTile, tx1 = r.x1 / kTile, ty0 = r.y0 / kTile, ty1 = r.y1 / kTile;
   const bool oneTile = tx0 == tx1 && ty0 == ty1;
   const auto sign = hn::Set(d, pass.sign);
+  const Lanes l = lanesOf(r);
   for (int ty = ty0; ty <= ty1; ++ty) {
     for (int tx = tx0; tx <= tx1; ++tx) {
       const std::size_t index = buffer.tileIndex(tx, ty);
@@ -130,20 +157,24 @@ void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRast
       buffer.materialise(index);
       float* values = buffer.tile(index);
       bool changed = false;
-      RowSetup row{std::max(r.x0, tx * kTile), std::min(r.x1, tx * kTile + kTile - 1), 0.f};
+      RowSetup row;
+      row.cx0 = std::max(r.x0, tx * kTile), row.cx1 = std::min(r.x1, tx * kTile + kTile - 1);
+      const auto boxLo = hn::Set(d, static_cast<float>(row.cx0 - r.x0));
+      const auto boxHi = hn::Set(d, static_cast<float>(row.cx1 - r.x0));
       const int ry0 = std::max(r.y0, ty * kTile), ry1 = std::min(r.y1, ty * kTile + kTile - 1);
       for (int y = ry0; y <= ry1; ++y) {
-        row.dy = static_cast<float>(y - r.y0);
+        startRow(l, y, r, row);
         work.pixelsWritten += static_cast<std::uint64_t>(row.cx1 - row.cx0 + 1);
         for (int lx = 0; lx < kTile; lx += n) {
           if (tx * kTile + lx > row.cx1 || tx * kTile + lx + n - 1 < row.cx0) continue;
           const auto dx = hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0));
-          const auto m = covered(r, row, dx);
+          const auto m = covered(l, row, dx, boxLo, boxHi);
           float* at = values + (y % kTile) * kTile + lx;
           const auto storedKey = hn::Mul(hn::LoadU(d, at), sign);
-          const auto nearer = hn::And(m, hn::Lt(keyAt(r, row, dx), storedKey));
+          const auto key = keyAt(l, row, dx);
+          const auto nearer = hn::And(m, hn::Lt(key, storedKey));
           if (hn::AllFalse(d, nearer)) continue;
-          hn::StoreU(hn::Mul(hn::IfThenElse(nearer, keyAt(r, row, dx), storedKey), sign), d, at);
+          hn::StoreU(hn::Mul(hn::IfThenElse(nearer, key, storedKey), sign), d, at);
           changed = true;
         }
       }
