@@ -3,6 +3,7 @@
 #include "core/Errors.h"
 #include "culling/visibility/GlDrawFloor.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/cpu/CpuRasterBackend.h"
 
 namespace cdb {
 
@@ -17,6 +18,11 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           },
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlQueryFloor>(resources.gl(), options);
+          });
+    r.add("cpu",
+          "exact conservative CPU depth rasteriser (SIMD, threads); needs no GL",
+          {.needsGl = false}, [](BackendResources&, const VisibilityOptions& options) {
+            return std::make_unique<CpuRasterBackend>(options);
           });
     return r;
   }();
