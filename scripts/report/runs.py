@@ -31,7 +31,9 @@ def strategy_order(names):
 
 @dataclass
 class Cell:
-    """Average and maximum CD time of one (strategy, resolution, objects) over all repeats and frames."""
+    """CD time of one (strategy, resolution, objects): the average is the mean over repeats of each
+    repeat's mean over its frames (equal frames per repeat: the plain mean); the maximum is over every
+    frame, with the repeat and frame that produced it (None when only tables.csv was read)."""
     strategy: str
     resolution: int
     objects: int
@@ -39,6 +41,13 @@ class Cell:
     maximum: float
     frames: int
     false_negatives: int
+    repeat_means: dict = field(default_factory=dict)   # repeat -> mean CD time over its frames
+    max_repeat: int = None
+    max_frame: int = None
+
+    @property
+    def repeats(self):
+        return len(self.repeat_means)
 
 
 @dataclass
@@ -46,6 +55,7 @@ class EnvironmentRun:
     name: str                     # the folder name, e.g. env1
     folder: Path
     status: str                   # "ok", "missing", "empty", "incomplete"
+    backend: str = ""             # its backend folder (RESULT_DIR/<backend>/envN); "" directly under RESULT_DIR
     environment: str = ""         # the environment column of the data (normally == name)
     frames: list = field(default_factory=list)   # frames.csv rows (dicts, typed)
     cells: list = field(default_factory=list)    # list[Cell]
@@ -60,6 +70,11 @@ class EnvironmentRun:
     def has_frames(self):
         return bool(self.frames)
 
+    @property
+    def backend_name(self):
+        """The backend folder's name, or for a folder directly under RESULT_DIR the one meta.json names."""
+        return self.backend or backend_of(self.meta)
+
 
 def discover_environments(result_dir: Path):
     """The thesis' environments plus any other env* folder present, in a stable order."""
@@ -67,9 +82,10 @@ def discover_environments(result_dir: Path):
     return list(THESIS_ENVIRONMENTS) + sorted(found - set(THESIS_ENVIRONMENTS))
 
 
-def read_environment(result_dir: Path, name: str) -> EnvironmentRun:
-    folder = result_dir / name
-    run = EnvironmentRun(name=name, folder=folder, status="ok")
+def read_environment(result_dir: Path, name: str, backend: str = "") -> EnvironmentRun:
+    """RESULT_DIR/name, or RESULT_DIR/backend/name when `backend` is given."""
+    folder = (result_dir / backend if backend else result_dir) / name
+    run = EnvironmentRun(name=name, folder=folder, status="ok", backend=backend)
     if not folder.is_dir():
         run.status = "missing"
         return run
@@ -95,6 +111,9 @@ def read_environment(result_dir: Path, name: str) -> EnvironmentRun:
         return run
     if not run.meta:
         run.notes.append("meta.json is missing: machine, GL renderer and commit unknown")
+    elif backend and backend_of(run.meta) != backend:
+        run.notes.append(f"in folder {backend}/ but meta.json names the {backend_of(run.meta)} backend; "
+                         f"reported as {backend}")
     planned = run.meta.get("config", {}).get("strategies")
     if isinstance(planned, list):
         absent = [str(p) for p in planned if p not in {c.strategy for c in run.cells}]
@@ -126,13 +145,18 @@ def _progress(folder):
 def cells_from_frames(frames):
     groups = {}
     for r in frames:
-        key = (r["strategy"], r["resolution"], r["objects"])
-        g = groups.setdefault(key, [0.0, 0.0, 0, 0])
-        g[0] += r["cd_ms"]
-        g[1] = max(g[1], r["cd_ms"])
-        g[2] += 1
-        g[3] += r["false_negatives"]
-    return [Cell(s, res, obj, total / n, peak, n, fn) for (s, res, obj), (total, peak, n, fn) in groups.items()]
+        groups.setdefault((r["strategy"], r["resolution"], r["objects"]), []).append(r)
+    cells = []
+    for (s, res, obj), rows in groups.items():
+        by_repeat = {}
+        for r in rows:
+            by_repeat.setdefault(r["repeat"], []).append(r["cd_ms"])
+        repeat_means = {k: sum(v) / len(v) for k, v in sorted(by_repeat.items())}
+        # The first frame of the earliest repeat that reaches the maximum, so the answer is stable.
+        peak = min(rows, key=lambda r: (-r["cd_ms"], r["repeat"], r["frame"]))
+        cells.append(Cell(s, res, obj, sum(repeat_means.values()) / len(repeat_means), peak["cd_ms"], len(rows),
+                          sum(r["false_negatives"] for r in rows), repeat_means, peak["repeat"], peak["frame"]))
+    return cells
 
 
 def _read_table_cells(path):

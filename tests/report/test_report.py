@@ -152,8 +152,13 @@ class ReportOnSyntheticRuns(unittest.TestCase):
 
     def test_env1_markdown_places_thesis_beside_ours(self):
         md = (self.dir / "env1" / "comparison.md").read_text()
-        self.assertIn("| cullide | 22.25 (thesis 10.44) | 32.25 (thesis 11.98) |", md)
-        self.assertIn(f"{22.25 / 7.25:.2f} (thesis {10.4387 / 4.984:.2f})", md)
+        # Repeat means 21.5 and 23.0 (cullide at 500): two repeats, so the interval spans exactly them.
+        self.assertIn("| cullide | 22.25 [21.50, 23.00] (thesis 10.44) | 32.25 [31.50, 33.00] (thesis 11.98) |", md)
+        self.assertIn(f"{22.25 / 7.25:.2f} [", md)
+        self.assertIn(f"(thesis {10.4387 / 4.984:.2f}, below)", md)
+        # Maxima name the repeat and frame that produced them (repeat 1, frame 3: base + 2 * 3).
+        self.assertIn("| ours | 11.00 @r1 f3 (thesis 27.81) | 14.00 @r1 f3 (thesis 25.86) |", md)
+        self.assertIn("| cis (not in the thesis) | 11.25 [10.50, 12.00] | 13.25 [12.50, 14.00] |", md)
 
     def test_tables_and_report_name_the_visibility_backend(self):
         self.assertIn("average CD time (ms) by frame-buffer resolution (pixels, square), 50 objects, cpu backend",
