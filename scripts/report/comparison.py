@@ -55,6 +55,7 @@ class Comparison:
     ratio_estimates: dict = field(default_factory=dict)  # ("average", numerator, column) -> Estimate
     ratio_mean_estimates: dict = field(default_factory=dict)  # ("average", numerator) -> Estimate
     maxima_at: dict = field(default_factory=dict)    # (strategy, column) -> (repeat, frame) of the maximum
+    thesis_strategies: set = field(default_factory=set)   # strategies with numbers anywhere in the table
 
     @property
     def ratio_rows(self):
@@ -68,8 +69,8 @@ class Comparison:
         return self.run.backend_name
 
     def in_thesis(self, strategy):
-        """Whether the thesis' table has any number for this strategy (False without a table)."""
-        return any(k[1] == strategy for k in self.thesis)
+        """Whether the thesis' table has any number for this strategy, in any column (False without a table)."""
+        return strategy in self.thesis_strategies
 
     def thesis_positions(self):
         """[(numerator, column, thesis ratio, Estimate, 'inside'|'above'|'below'|None)] for every
@@ -85,10 +86,17 @@ class Comparison:
         return out
 
 
-def choose_layout(run, thesis):
+def choose_layout(run, thesis, like=None):
+    """The columns of a run's tables; `like` (another run's Layout) imposes its axis and fixed value, so
+    that backends measured on different subsets of one sweep share columns."""
     resolutions = sorted({c.resolution for c in run.cells})
     objects = sorted({c.objects for c in run.cells})
     thesis_axis = thesis.swept_dimension(run.environment)
+    if like is not None:
+        fixed_dim = like.fixed_dimension
+        columns = sorted({getattr(c, like.axis) for c in run.cells if getattr(c, fixed_dim) == like.fixed_value})
+        candidates = objects if fixed_dim == "objects" else resolutions
+        return Layout(like.axis, columns, like.fixed_value, [v for v in candidates if v != like.fixed_value])
     if len(resolutions) > 1 and len(objects) == 1:
         axis = "resolution"
     elif len(objects) > 1 and len(resolutions) == 1:
@@ -108,10 +116,10 @@ def choose_layout(run, thesis):
     return Layout(axis, columns, fixed, [v for v in candidates if v != fixed])
 
 
-def build_comparison(run, thesis):
-    layout = choose_layout(run, thesis)
+def build_comparison(run, thesis, like=None):
+    layout = choose_layout(run, thesis, like)
     env = run.environment
-    cmp = Comparison(run, thesis.table_name(env), layout, run.strategies)
+    cmp = Comparison(run, thesis.table_name(env), layout, run.strategies, thesis_strategies=thesis.strategies(env))
     by_cell = {(c.strategy, c.resolution, c.objects): c for c in run.cells}
     for column in layout.columns:
         resolution, objects = layout.cell(column)
@@ -358,6 +366,20 @@ def comparison_csv(cmp):
             w.writerow(row + [num(est.value if est else ours), num(theirs), *bounds(est),
                               (est.position(theirs) or "") if est else "", int(cmp.in_thesis(numerator))])
     return buf.getvalue()
+
+
+def thesis_position_summary(cmp):
+    """'k of n thesis ratios inside our 95% intervals (a above, b below, m without an interval)'."""
+    positions = [p for *_, p in cmp.thesis_positions()]
+    if not positions:
+        return None
+    n = len(positions)
+    inside = positions.count("inside")
+    rest = [f"{positions.count(w)} {w}" for w in ("above", "below") if positions.count(w)]
+    none = positions.count(None)
+    if none:
+        rest.append(f"{none} without an interval here")
+    return f"{inside} of {n} thesis ratios inside our 95% intervals" + (f" ({', '.join(rest)})" if rest else "")
 
 
 def write_comparison(cmp):

@@ -10,7 +10,8 @@ FRAME_REQUIRED = ("environment", "strategy", "resolution", "objects", "repeat", 
                   "sets", "false_negatives")
 FRAME_INTS = ("resolution", "objects", "repeat", "frame", "pcs_size", "sets", "pcs_triangles",
               "pairs_tested", "triangle_tests", "colliding_pairs", "truth_pairs", "false_negatives",
-              "false_positives", "culling_misses", "queries", "draws", "triangles_drawn")
+              "false_positives", "culling_misses", "queries", "draws", "triangles_drawn", "pixels_tested",
+              "pixels_written")
 FRAME_TIMES = ("cd_ms", "cull_ms", "exact_ms")
 
 STATISTICS = ("average", "maximum")
