@@ -196,17 +196,20 @@ def _counters(cm):
 
 # ---- text ---------------------------------------------------------------------------------------------
 
-def _counts_text(o, backend, cm):
+def _counts_text(o, backend, cm, first):
     faster, slower, measured, clear = o.counts[backend]
     d = o.direction(backend)
-    shown = faster if d == "faster" else slower if d == "slower" else faster
-    return f"{d} on {backend} at {shown} of {measured} {cm.unit}" + (f" ({clear} with the 95% interval of "
-                                                                        f"the ratio clear of 1)" if clear else "")
+    shown = slower if d == "slower" else faster
+    than = f" than {o.second}" if first else ""
+    if d == "tied":
+        return f"faster{than} on {backend} at {faster} of {measured} {cm.unit}, slower at {slower}"
+    return f"{d}{than} on {backend} at {shown} of {measured} {cm.unit}" + (
+        f" ({clear} with the 95% interval of the ratio clear of 1)" if clear else "")
 
 
 def statements(cm):
     """(changed, disjoint, everywhere) sentences, each computed from the numbers."""
-    changed = [f"`{o.first}` vs `{o.second}`: {o.first} is " + "; ".join(_counts_text(o, b, cm) for b in o.counts)
+    changed = [f"{o.first} is " + "; ".join(_counts_text(o, b, cm, i == 0) for i, b in enumerate(o.counts))
                + "." for o in cm.changed]
     disjoint = []
     for numerator, a, b, apart, shared in cm.disjoint:
