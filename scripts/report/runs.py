@@ -20,8 +20,10 @@ TABLE_REQUIRED = ("environment", "statistic", "strategy", "resolution", "objects
 # The thesis' three environments are always listed, so that a missing one is reported, not skipped.
 THESIS_ENVIRONMENTS = ("env1", "env2", "env3")
 
-# A stable row order: the thesis' strategies in the order of its tables' narrative, then CPU peers.
-KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "sorted", "cis", "ours", "fcl", "bullet", "ode")
+# A stable row order: the thesis' strategies in the order of its tables' narrative, then CPU peers, then the
+# brute-force baseline.
+KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "quick_cullide", "sorted", "cis", "ours", "fcl", "bullet", "ode",
+                        "all_pairs")
 
 
 def strategy_order(names):
