@@ -231,7 +231,6 @@ def ratio_table(cm):
     out = [f"| ratio (average) | backend | " + " | ".join(str(c) for c in cols) + " |",
            "|---|---|" + "---:|" * len(cols)]
     numerators = strategy_order({n for cmp in cm.comparisons.values() for n in cmp.numerators})
-    thesis_cmp = next(iter(cm.comparisons.values()))
     for numerator in numerators:
         for backend, cmp in cm.comparisons.items():
             if numerator not in cmp.numerators:
@@ -247,7 +246,9 @@ def ratio_table(cm):
                     interval = fmt_interval(est)
                     cells.append(f"{est.value:.2f}" + (f" {interval}" if interval else ""))
             out.append(f"| {numerator} / {REFERENCE} | {backend} | " + " | ".join(cells) + " |")
-        theirs = [thesis_cmp.ratios.get(("average", numerator, c), (None, None))[1] for c in cols]
+        theirs = [next((cmp.ratios[("average", numerator, c)][1] for cmp in cm.comparisons.values()
+                        if cmp.ratios.get(("average", numerator, c), (None, None))[1] is not None), None)
+                  for c in cols]
         if any(t is not None for t in theirs):
             out.append(f"| {numerator} / {REFERENCE} | thesis | " + " | ".join(fmt_ratio(t) for t in theirs) + " |")
     return "\n".join(out)

@@ -369,17 +369,22 @@ def comparison_csv(cmp):
 
 
 def thesis_position_summary(cmp):
-    """'k of n thesis ratios inside our 95% intervals (a above, b below, m without an interval)'."""
-    positions = [p for *_, p in cmp.thesis_positions()]
-    if not positions:
+    """'k of n thesis ratios inside our 95% intervals (a above, b below)' over the average-ratio cells
+    with a thesis value and an interval here; None when the thesis has no ratio for these columns."""
+    cells = cmp.thesis_positions()
+    if not cells:
         return None
-    n = len(positions)
+    positions = [p for *_, p in cells if p is not None]
+    if not positions:
+        reasons = sorted({est.why for *_, est, p in cells if est is not None and est.why})
+        why = "; ".join(reasons) if reasons else "no ratio of ours in those columns"
+        return f"none of {len(cells)} thesis ratios can be placed against an interval here: {why}"
     inside = positions.count("inside")
     rest = [f"{positions.count(w)} {w}" for w in ("above", "below") if positions.count(w)]
-    none = positions.count(None)
-    if none:
-        rest.append(f"{none} without an interval here")
-    return f"{inside} of {n} thesis ratios inside our 95% intervals" + (f" ({', '.join(rest)})" if rest else "")
+    text = f"{inside} of {len(positions)} thesis ratios inside our 95% intervals" + (f" ({', '.join(rest)})" if rest else "")
+    if len(positions) < len(cells):
+        text += f"; {len(cells) - len(positions)} more without an interval here"
+    return text
 
 
 def write_comparison(cmp):

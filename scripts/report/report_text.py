@@ -222,9 +222,12 @@ def _inside_intervals(cmp):
     for numerator, cells in by_numerator.items():
         groups = {}
         for column, theirs, est, position in cells:
-            groups.setdefault(position or "no interval here", []).append(str(column))
-        parts = [f"{where} at {', '.join(cols)}" for where, cols in groups.items()]
-        out.append(f"- {numerator}/{REFERENCE} (average): the thesis' ratio lies " + "; ".join(parts) + ".")
+            groups.setdefault(position, []).append(str(column))
+        if set(groups) == {None}:
+            continue
+        parts = [f"lies {where} at {', '.join(cols)}" if where else f"has no interval to lie in at {', '.join(cols)}"
+                 for where, cols in groups.items()]
+        out.append(f"- {numerator}/{REFERENCE} (average): the thesis' ratio " + "; ".join(parts) + ".")
     out.append("")
     return out
 
