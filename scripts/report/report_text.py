@@ -70,7 +70,8 @@ def _backends(result_dir, layout, sections, cost_models):
             cmp = cm.comparisons.get(b) if cm else None
             cols = cmp.layout.columns if cmp else []
             repeats = sorted({c.repeats for c in run.cells if c.repeats})
-            shown = "" if not repeats else f", {repeats[0]}" + (f"-{repeats[-1]}" if len(repeats) > 1 else "") + " repeats"
+            shown = "" if not repeats else (f", {repeats[0]}" + (f"-{repeats[-1]}" if len(repeats) > 1 else "")
+                                            + (" repeat" if repeats == [1] else " repeats"))
             cells.append(f"{', '.join(run.strategies)} at {len(cols)} {cmp.layout.axis if cmp else ''} column(s)"
                          f"{shown}")
         out.append(f"| {b} | " + " | ".join(cells) + " |")
