@@ -220,8 +220,10 @@ def statements(cm):
     for o in cm.everywhere:
         per = ", ".join(f"{b} {o.counts[b][0] if o.direction(b) == 'faster' else o.counts[b][1]} of {o.counts[b][2]}"
                         for b in o.counts)
+        clear = ", ".join(f"{b} {o.counts[b][3]} of {o.counts[b][2]}" for b in o.counts)
         everywhere.append(f"{o.first} is {o.direction(next(iter(o.counts)))} than {o.second} on every backend that "
-                          f"measured both ({per} {cm.unit}).")
+                          f"measured both ({per} {cm.unit}); columns where the 95% interval of "
+                          f"{o.first}/{o.second} is clear of 1: {clear}.")
     return changed, disjoint, everywhere
 
 
