@@ -152,7 +152,7 @@ CDB_RASTER_INLINE bool setupBounds(const ScreenTriangle& t, const RasterPass& pa
 // the triangle meets and the bound is at least as far (test) or near (write) as the exact one at
 // any of them, so this stays conservative: it can only add pixels and move keys toward
 // "occluded". A triangle this small covers most of its box anyway.
-inline constexpr int kSmallBox = 2;
+inline constexpr int kSmallBox = 3;
 [[nodiscard]] inline bool smallBox(const RasterPass& pass, const TriangleRaster& r) {
   return pass.conservative && r.x1 - r.x0 < kSmallBox && r.y1 - r.y0 < kSmallBox;
 }
