@@ -140,6 +140,20 @@ bool testOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaste
   return false;
 }
 
+// Exact bounds of a tile from its 64 values.
+HWY_INLINE void refreshBounds(CpuDepthBuffer& buffer, std::size_t index) {
+  const D d;
+  const int n = static_cast<int>(hn::Lanes(d));
+  const float* values = buffer.tile(index);
+  auto lo = hn::LoadU(d, values), hi = lo;
+  for (int i = n; i < CpuDepthBuffer::kTilePixels; i += n) {
+    const auto v = hn::LoadU(d, values + i);
+    lo = hn::Min(lo, v), hi = hn::Max(hi, v);
+  }
+  buffer.tileMin(index) = hn::GetLane(hn::MinOfLanes(d, lo));
+  buffer.tileMax(index) = hn::GetLane(hn::MaxOfLanes(d, hi));
+}
+
 void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
               RasterWork& work) {
   const D d;
@@ -178,19 +192,52 @@ void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRast
           changed = true;
         }
       }
-      if (changed) {
-        // Exact bounds again (a write only lowers keys, but the farthest may drop too, which lets
-        // later tests accept the tile whole).
-        auto lo = hn::LoadU(d, values), hi = lo;
-        for (int i = n; i < CpuDepthBuffer::kTilePixels; i += n) {
-          const auto v = hn::LoadU(d, values + i);
-          lo = hn::Min(lo, v), hi = hn::Max(hi, v);
-        }
-        buffer.tileMin(index) = hn::GetLane(hn::MinOfLanes(d, lo));
-        buffer.tileMax(index) = hn::GetLane(hn::MaxOfLanes(d, hi));
-      }
+      // Exact bounds again (a write only lowers keys, but the farthest may drop too, which lets
+      // later tests accept the tile whole).
+      if (changed) refreshBounds(buffer, index);
     }
   }
+}
+
+// A small triangle (smallBox): every pixel of its box, at the key bound of step 1.
+bool testSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
+               RasterWork& work) {
+  for (int y = r.y0; y <= r.y1; ++y)
+    for (int x = r.x0; x <= r.x1; ++x) {
+      const std::size_t index = buffer.tileIndex(x / kTile, y / kTile);
+      const TileKeys stored = tileKeys(buffer, index, pass.sign);
+      if (r.zHi < stored.nearest) continue;
+      ++work.pixelsTested;
+      if (buffer.uniform(index) || r.zLo >= stored.farthest) return true;
+      const float key = pass.sign * buffer.tile(index)[(y % kTile) * kTile + x % kTile];
+      if (r.zHi >= key) return true;
+    }
+  return false;
+}
+
+void writeSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
+                RasterWork& work) {
+  const float value = pass.sign * r.zLo;
+  for (int y = r.y0; y <= r.y1; ++y)
+    for (int x = r.x0; x <= r.x1; ++x) {
+      const std::size_t index = buffer.tileIndex(x / kTile, y / kTile);
+      if (r.zLo >= tileKeys(buffer, index, pass.sign).farthest) continue;
+      ++work.pixelsWritten;
+      buffer.materialise(index);
+      float& at = buffer.tile(index)[(y % kTile) * kTile + x % kTile];
+      if (!(r.zLo < pass.sign * at)) continue;
+      const float old = at;
+      at = value;
+      // The value only moves toward the near bound; the far bound can only move when the pixel
+      // held it.
+      if (pass.sign > 0) {
+        buffer.tileMin(index) = std::min(buffer.tileMin(index), value);
+        if (old == buffer.tileMax(index)) refreshBounds(buffer, index);
+      } else {
+        buffer.tileMax(index) = std::max(buffer.tileMax(index), value);
+        if (old == buffer.tileMin(index)) refreshBounds(buffer, index);
+      }
+    }
 }
 
 // Step 1 of the set-up was enough: every key the test can have is nearer than everything stored
@@ -210,9 +257,9 @@ bool decidedByTiles(CpuDepthBuffer& buffer, const RasterPass& pass, const Triang
 HWY_INLINE bool testTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                              const ScreenTriangle& t, RasterWork& work) {
   TriangleRaster r;
-  if (!setupBounds(t, pass, RasterRole::Test, r) ||
-      decidedByTiles(buffer, pass, r, RasterRole::Test))
-    return false;
+  if (!setupBounds(t, pass, RasterRole::Test, r)) return false;
+  if (smallBox(pass, r)) return testSmall(buffer, pass, r, work);
+  if (decidedByTiles(buffer, pass, r, RasterRole::Test)) return false;
   setupCoverage(t, pass, RasterRole::Test, r);
   return testOne(buffer, pass, r, work);
 }
@@ -235,9 +282,12 @@ void WriteAll(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriang
               std::size_t count, RasterWork& work) {
   TriangleRaster r;
   for (std::size_t i = 0; i < count; ++i) {
-    if (!setupBounds(triangles[i], pass, RasterRole::Write, r) ||
-        decidedByTiles(buffer, pass, r, RasterRole::Write))
+    if (!setupBounds(triangles[i], pass, RasterRole::Write, r)) continue;
+    if (smallBox(pass, r)) {
+      writeSmall(buffer, pass, r, work);
       continue;
+    }
+    if (decidedByTiles(buffer, pass, r, RasterRole::Write)) continue;
     setupCoverage(triangles[i], pass, RasterRole::Write, r);
     writeOne(buffer, pass, r, work);
   }

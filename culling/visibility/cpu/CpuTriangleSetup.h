@@ -146,6 +146,17 @@ CDB_RASTER_INLINE bool setupBounds(const ScreenTriangle& t, const RasterPass& pa
   return true;
 }
 
+// Small triangles (conservative mode only): when the pixel box of step 1 is at most
+// kSmallBox x kSmallBox pixels, the loops skip step 2 and treat every pixel of the box as covered
+// with the key bound of step 1 (r.zLo for a write, r.zHi for a test). The box holds every pixel
+// the triangle meets and the bound is at least as far (test) or near (write) as the exact one at
+// any of them, so this stays conservative: it can only add pixels and move keys toward
+// "occluded". A triangle this small covers most of its box anyway.
+inline constexpr int kSmallBox = 3;
+[[nodiscard]] inline bool smallBox(const RasterPass& pass, const TriangleRaster& r) {
+  return pass.conservative && r.x1 - r.x0 < kSmallBox && r.y1 - r.y0 < kSmallBox;
+}
+
 // Step 2: edge functions and the depth plane, for a triangle step 1 accepted.
 CDB_RASTER_INLINE void setupCoverage(const ScreenTriangle& t, const RasterPass& pass,
                                      RasterRole role, TriangleRaster& r) {
