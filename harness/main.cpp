@@ -50,6 +50,21 @@ int printInfo(const std::string& platform) {
   return working > 0 ? 0 : 1;
 }
 
+// "a, b,c" -> {a, b, c}.
+std::vector<std::string> splitNames(const std::string& list) {
+  std::vector<std::string> names;
+  std::string cur;
+  for (char c : list + ",") {
+    if (c == ',') {
+      if (!cur.empty()) names.push_back(cur);
+      cur.clear();
+    } else if (c != ' ') {
+      cur += c;
+    }
+  }
+  return names;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -111,6 +126,9 @@ int main(int argc, char** argv) {
   checkCmd->add_flag("--update-baseline", check.updateBaseline,
                      "write the baseline from this run's ratios instead of comparing with it");
   checkCmd->add_option("--gl", check.glPlatform, "auto | device | surfaceless")->capture_default_str();
+  std::string checkBackends;
+  checkCmd->add_option("--visibility", checkBackends,
+                       "comma-separated visibility backends to check (default: every one that starts here)");
   checkCmd->add_option("--assets", check.assetDirs, "asset folder (repeatable), before $CDBENCH_ASSETS");
 
   try {
@@ -144,6 +162,7 @@ int main(int argc, char** argv) {
     }
     if (*checkCmd) {
       for (int i = 0; i < argc; ++i) check.commandLine.emplace_back(argv[i]);
+      check.backends = splitNames(checkBackends);
       check.progress = stderr;
       const auto report = cdb::runRegressionCheck(check);
       cdb::printCheckReport(report, stdout);
@@ -155,19 +174,7 @@ int main(int argc, char** argv) {
                    merged.frameRows, mergeOut.c_str());
       return 0;
     }
-    if (!strategies.empty()) {
-      std::vector<std::string> names;
-      std::string cur;
-      for (char c : strategies + ",") {
-        if (c == ',') {
-          if (!cur.empty()) names.push_back(cur);
-          cur.clear();
-        } else if (c != ' ') {
-          cur += c;
-        }
-      }
-      run.strategies = names;
-    }
+    if (!strategies.empty()) run.strategies = splitNames(strategies);
     if (!resolutions.empty()) run.resolutions = cdb::parseIntList(resolutions);
     if (!objects.empty()) run.objectCounts = cdb::parseIntList(objects);
     if (*framesOpt) run.frames = frames;

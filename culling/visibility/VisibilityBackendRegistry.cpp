@@ -1,7 +1,9 @@
 #include "culling/visibility/VisibilityBackendRegistry.h"
 
 #include "core/Errors.h"
+#include "culling/visibility/GlDrawFloor.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/cpu/CpuRasterBackend.h"
 
 namespace cdb {
 
@@ -13,6 +15,14 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           {.needsGl = true},
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlOcclusionQueryBackend>(resources.gl(), options);
+          },
+          [](BackendResources& resources, const VisibilityOptions& options) {
+            return std::make_unique<GlQueryFloor>(resources.gl(), options);
+          });
+    r.add("cpu",
+          "exact conservative CPU depth rasteriser (SIMD, threads); needs no GL",
+          {.needsGl = false}, [](BackendResources&, const VisibilityOptions& options) {
+            return std::make_unique<CpuRasterBackend>(options);
           });
     return r;
   }();
@@ -33,8 +43,31 @@ VisibilityOptions visibilityOptionsOf(const CullingSpec& culling) {
 }
 
 void VisibilityBackendRegistry::add(std::string name, std::string description,
-                                    BackendTraits traits, Factory factory) {
-  entries_.push_back({std::move(name), std::move(description), traits, std::move(factory)});
+                                    BackendTraits traits, Factory factory, FloorFactory floor) {
+  entries_.push_back(
+      {std::move(name), std::move(description), traits, std::move(factory), std::move(floor)});
+}
+
+std::unique_ptr<BackendFloor> VisibilityBackendRegistry::createFloor(
+    std::string_view name, BackendResources& resources, const VisibilityOptions& options) const {
+  validate(name);
+  const Entry& e = *find(name);
+  if (e.floor) return e.floor(resources, options);
+  return std::make_unique<ReplayFloor>(e.factory(resources, options));
+}
+
+std::vector<std::string> VisibilityBackendRegistry::available(BackendResources& resources,
+                                                              std::vector<std::string>* why) const {
+  std::vector<std::string> out;
+  for (const auto& e : entries_) {
+    try {
+      (void)e.factory(resources, {});
+      out.push_back(e.name);
+    } catch (const RunError& error) {
+      if (why) why->push_back(e.name + ": " + error.what());
+    }
+  }
+  return out;
 }
 
 const VisibilityBackendRegistry::Entry* VisibilityBackendRegistry::find(std::string_view name) const {
