@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 
 namespace cdb {
 
@@ -59,131 +60,119 @@ void QuickCullide::classifyObjects(const Eigen::Vector3d& axis, bool firstAxis) 
 }
 
 std::vector<SetMember> QuickCullide::drawnTriangles() const {
-  std::vector<std::vector<std::uint8_t>> marked(members_.size());
-  std::vector<std::uint8_t> whole(members_.size(), 0);
-  const auto mark = [&](std::uint32_t member, const Side& side) {
-    if (side.all) {
-      whole[member] = 1;
-      return;
-    }
-    auto& m = marked[member];
-    if (m.empty()) m.assign(scene_->meshOf(members_[member]).triangleCount(), 0);
-    for (std::uint32_t t : side.triangles) m[t] = 1;
-  };
-  for (const auto& p : trianglePairs_) {
-    mark(p.first, p.firstSide);
-    mark(p.second, p.secondSide);
-  }
   std::vector<SetMember> drawn(members_.size());
   for (std::size_t i = 0; i < members_.size(); ++i) {
-    drawn[i].object = members_[i];
-    const auto count = static_cast<std::uint32_t>(scene_->meshOf(members_[i]).triangleCount());
-    for (std::uint32_t t = 0; t < count; ++t)
-      if (whole[i] || (!marked[i].empty() && marked[i][t])) drawn[i].triangles.push_back(t);
+    const Member& m = members_[i];
+    drawn[i].object = m.object;
+    const auto count = static_cast<std::uint32_t>(scene_->meshOf(m.object).triangleCount());
+    const Side* sides[2] = {isEarlier_[i] ? &m.towardLater : nullptr, isLater_[i] ? &m.towardEarlier : nullptr};
+    auto& out = drawn[i].triangles;
+    if ((sides[0] && sides[0]->all) || (sides[1] && sides[1]->all)) {
+      out.resize(count);
+      for (std::uint32_t t = 0; t < count; ++t) out[t] = t;
+    } else if (sides[0] && sides[1]) {
+      std::set_union(sides[0]->triangles.begin(), sides[0]->triangles.end(), sides[1]->triangles.begin(),
+                     sides[1]->triangles.end(), std::back_inserter(out));
+    } else {
+      out = (sides[0] ? sides[0] : sides[1])->triangles;
+    }
   }
   return drawn;
 }
 
-void QuickCullide::dropUnpairedMembers() {
+void QuickCullide::dropEmptyPairsAndMembers() {
+  std::erase_if(memberPairs_, [&](const auto& p) {
+    const Side& a = members_[p.first].towardLater;
+    const Side& b = members_[p.second].towardEarlier;
+    return (!a.all && a.triangles.empty()) || (!b.all && b.triangles.empty());
+  });
+  std::vector<std::uint8_t> earlier(members_.size(), 0), later(members_.size(), 0);
+  for (const auto& p : memberPairs_) earlier[p.first] = later[p.second] = 1;
   std::vector<std::uint32_t> renumbered(members_.size(), 0);
-  std::vector<std::uint8_t> paired(members_.size(), 0);
-  for (const auto& p : trianglePairs_) paired[p.first] = paired[p.second] = 1;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < members_.size(); ++i) {
-    if (!paired[i]) continue;
+    if (!earlier[i] && !later[i]) continue;
     renumbered[i] = static_cast<std::uint32_t>(kept);
-    members_[kept++] = members_[i];
+    isEarlier_[kept] = earlier[i];
+    isLater_[kept] = later[i];
+    if (kept != i) members_[kept] = std::move(members_[i]);  // never onto itself: that empties it
+    ++kept;
   }
   members_.resize(kept);
-  for (auto& p : trianglePairs_) {
-    p.first = renumbered[p.first];
-    p.second = renumbered[p.second];
-  }
+  isEarlier_.resize(kept);
+  isLater_.resize(kept);
+  for (auto& p : memberPairs_) p = {renumbered[p.first], renumbered[p.second]};
 }
 
 // The same rule per triangle: for members A before B, a triangle of A fully visible in pass 2 saw
 // all of B drawn and meets none of B's side, and a triangle of B fully visible in pass 1 none of
-// A's. Each side keeps only the triangles that the other side's passes did not clear.
+// A's. So a member's side toward later members loses its triangles fully visible in pass 2, its
+// side toward earlier members those fully visible in pass 1.
 void QuickCullide::classifyTriangles(const Eigen::Vector3d& axis) {
-  if (trianglePairs_.empty()) return;
+  if (memberPairs_.empty()) return;
   const std::vector<SetMember> drawn = drawnTriangles();
-  const ViewSpec view{axis, bounds_.unionOf(members_), options_.resolution};
+  std::vector<ObjectId> objects(members_.size());
+  for (std::size_t i = 0; i < members_.size(); ++i) objects[i] = members_[i].object;
+  const ViewSpec view{axis, bounds_.unionOf(objects), options_.resolution};
   trianglePassAnswers(*backend_, *scene_, drawn, PassPair::fresh(view), answers_);
 
-  answersBase_.resize(members_.size());
-  std::size_t size = 0;
-  for (std::size_t i = 0; i < members_.size(); ++i) {
-    answersBase_[i] = size;
-    size += scene_->meshOf(members_[i]).triangleCount();
-  }
-  triangleAnswers_.assign(size, 0);
+  std::vector<std::uint8_t> flags;  // per mesh triangle of the member: bit 0 pass 1, bit 1 pass 2
   std::size_t piece = 0;
-  for (std::size_t i = 0; i < drawn.size(); ++i)
+  const auto narrow = [&](Side& side, std::uint8_t cleared) {
+    if (side.all) {
+      side.all = false;
+      side.triangles.clear();
+      for (std::uint32_t t = 0; t < flags.size(); ++t)
+        if (!(flags[t] & cleared)) side.triangles.push_back(t);
+      side.all = side.triangles.size() == flags.size();
+      if (side.all) side.triangles.clear();
+    } else {
+      std::erase_if(side.triangles, [&](std::uint32_t t) { return (flags[t] & cleared) != 0; });
+    }
+  };
+  for (std::size_t i = 0; i < members_.size(); ++i) {
+    flags.assign(scene_->meshOf(members_[i].object).triangleCount(), 0);
     for (std::uint32_t t : drawn[i].triangles) {
-      triangleAnswers_[answersBase_[i] + t] =
-          (answers_.first[piece] ? kVisibleFirst : 0) | (answers_.second[piece] ? kVisibleSecond : 0);
+      flags[t] = static_cast<std::uint8_t>((answers_.first[piece] ? kVisibleFirst : 0) |
+                                           (answers_.second[piece] ? kVisibleSecond : 0));
       ++piece;
     }
-
-  // Keeps the side's triangles without `cleared`; false when none is left.
-  const auto narrow = [&](Side& side, std::uint32_t member, std::uint8_t cleared) {
-    const std::uint8_t* flags = triangleAnswers_.data() + answersBase_[member];
-    std::vector<std::uint32_t> kept;
-    if (side.all) {
-      const auto count = static_cast<std::uint32_t>(scene_->meshOf(members_[member]).triangleCount());
-      for (std::uint32_t t = 0; t < count; ++t)
-        if (!(flags[t] & cleared)) kept.push_back(t);
-      if (kept.size() == count) return true;
-    } else {
-      for (std::uint32_t t : side.triangles)
-        if (!(flags[t] & cleared)) kept.push_back(t);
-    }
-    side.all = false;
-    side.triangles = std::move(kept);
-    return !side.triangles.empty();
-  };
-  std::erase_if(trianglePairs_, [&](TrianglePair& p) {
-    const bool firstLeft = narrow(p.firstSide, p.first, kVisibleSecond);
-    return !firstLeft || !narrow(p.secondSide, p.second, kVisibleFirst);
-  });
-  dropUnpairedMembers();
+    if (isEarlier_[i]) narrow(members_[i].towardLater, kVisibleSecond);
+    if (isLater_[i]) narrow(members_[i].towardEarlier, kVisibleFirst);
+  }
+  dropEmptyPairsAndMembers();
 }
 
 CullingResult QuickCullide::result(const VisibilityCounters& work) const {
   CullingResult out;
   out.counters.visibility = work;
-  if (trianglePairs_.empty()) return out;
+  if (memberPairs_.empty()) return out;
 
   const std::vector<SetMember> drawn = drawnTriangles();
   PotentiallyCollidingSet set;
   set.members.reserve(members_.size());
-  // Per member, a mesh triangle's position in the member's list (members keeping a subset).
-  std::vector<std::vector<std::uint32_t>> positionIn(members_.size());
+  // Per member, its side's triangles as positions in its own list (empty: all of them).
+  std::vector<std::vector<std::uint32_t>> laterPositions(members_.size()), earlierPositions(members_.size());
+  std::vector<std::uint32_t> positionIn;
+  const auto positions = [&](const Side& side, const SetMember& m, std::vector<std::uint32_t>& list) {
+    if (side.all || side.triangles.size() == m.triangles.size()) return;  // every triangle of the member
+    list.reserve(side.triangles.size());
+    for (std::uint32_t t : side.triangles) list.push_back(positionIn[t]);
+  };
   for (std::size_t i = 0; i < members_.size(); ++i) {
     SetMember m = drawn[i];
     out.counters.pcsTriangles += m.triangles.size();
-    if (m.triangles.size() == scene_->meshOf(m.object).triangleCount()) {
-      m.triangles.clear();
-    } else {
-      positionIn[i].assign(scene_->meshOf(m.object).triangleCount(), 0);
-      for (std::uint32_t k = 0; k < m.triangles.size(); ++k) positionIn[i][m.triangles[k]] = k;
-    }
+    positionIn.assign(scene_->meshOf(m.object).triangleCount(), 0);
+    for (std::uint32_t k = 0; k < m.triangles.size(); ++k) positionIn[m.triangles[k]] = k;
+    if (isEarlier_[i]) positions(members_[i].towardLater, m, laterPositions[i]);
+    if (isLater_[i]) positions(members_[i].towardEarlier, m, earlierPositions[i]);
+    if (m.triangles.size() == positionIn.size()) m.triangles.clear();
     set.members.push_back(std::move(m));
   }
-  const auto positions = [&](const Side& side, std::uint32_t member) {
-    std::vector<std::uint32_t> list;
-    if (side.all || side.triangles.size() == drawn[member].triangles.size())
-      return list;  // every triangle of the member
-    const bool wholeMember = set.members[member].allTriangles();
-    list.reserve(side.triangles.size());
-    for (std::uint32_t t : side.triangles) list.push_back(wholeMember ? t : positionIn[member][t]);
-    return list;
-  };
   set.pairs.emplace();
-  set.pairs->reserve(trianglePairs_.size());
-  for (const auto& p : trianglePairs_)
-    set.pairs->push_back({p.first, p.second, positions(p.firstSide, p.first),
-                          positions(p.secondSide, p.second)});
+  set.pairs->reserve(memberPairs_.size());
+  for (const auto& [a, b] : memberPairs_)
+    set.pairs->push_back({a, b, laterPositions[a], earlierPositions[b]});
 
   out.counters.pcsSize = set.members.size();
   out.counters.sets = 1;
@@ -201,11 +190,16 @@ CullingResult QuickCullide::cull(const FrameInput& frame) {
   for (std::size_t k = 0; k < kAxes.size(); ++k) classifyObjects(kAxes[k], k == 0);
 
   // Object pairs into member pairs: members in pass-1 order, every triangle on both sides.
-  members_ = objects_;
-  for (std::uint32_t i = 0; i < members_.size(); ++i) positionOf_[members_[i]] = i;
-  trianglePairs_.clear();
-  for (const auto& p : objectPairs_)
-    trianglePairs_.push_back({positionOf_[p.a], positionOf_[p.b], {}, {}});
+  members_.clear();
+  for (std::uint32_t i = 0; i < objects_.size(); ++i) {
+    members_.push_back({objects_[i], {}, {}});
+    positionOf_[objects_[i]] = i;
+  }
+  memberPairs_.clear();
+  for (const auto& p : objectPairs_) memberPairs_.emplace_back(positionOf_[p.a], positionOf_[p.b]);
+  isEarlier_.assign(members_.size(), 0);
+  isLater_.assign(members_.size(), 0);
+  for (const auto& p : memberPairs_) isEarlier_[p.first] = isLater_[p.second] = 1;
   for (const auto& axis : kAxes) classifyTriangles(axis);
 
   return result(backend_->counters() - before);

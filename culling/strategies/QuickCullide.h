@@ -31,18 +31,19 @@ class QuickCullide final : public CullingStrategy {
     bool all = true;
     std::vector<std::uint32_t> triangles;
   };
-  // A pair of members at triangle level; `first` comes before `second` in pass-1 order.
-  struct TrianglePair {
-    std::uint32_t first = 0;
-    std::uint32_t second = 0;
-    Side firstSide, secondSide;
+  // A member at triangle level. Which of its triangles may meet a partner depends only on whether
+  // the partner comes later in pass-1 order (pass 2 clears them) or earlier (pass 1 clears them).
+  struct Member {
+    ObjectId object = 0;
+    Side towardLater;    // its side in pairs with later members
+    Side towardEarlier;  // its side in pairs with earlier members
   };
 
   void classifyObjects(const Eigen::Vector3d& axis, bool firstAxis);
   void classifyTriangles(const Eigen::Vector3d& axis);
-  // Members with no pair left are dropped; pairs renumbered.
-  void dropUnpairedMembers();
-  // Each member's triangles: the union of its sides over its pairs (explicit lists).
+  // Drops the pairs with an empty side, then the members left in no pair.
+  void dropEmptyPairsAndMembers();
+  // Each member's triangles to draw: the sides it has in its pairs (explicit lists).
   [[nodiscard]] std::vector<SetMember> drawnTriangles() const;
   [[nodiscard]] CullingResult result(const VisibilityCounters& work) const;
 
@@ -57,12 +58,10 @@ class QuickCullide final : public CullingStrategy {
   std::vector<ObjectPair> objectPairs_;
   std::vector<std::uint32_t> positionOf_;  // per object id: its position in objects_
 
-  // Triangle level: the members (pass-1 order) and their pairs.
-  std::vector<ObjectId> members_;
-  std::vector<TrianglePair> trianglePairs_;
-  // Per member, per mesh triangle: bit 0 fully visible in pass 1, bit 1 in pass 2 (last axis).
-  std::vector<std::uint8_t> triangleAnswers_;
-  std::vector<std::size_t> answersBase_;
+  // Triangle level: the members (pass-1 order) and their pairs (indices, earlier member first).
+  std::vector<Member> members_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> memberPairs_;
+  std::vector<std::uint8_t> isEarlier_, isLater_;  // per member: earlier / later one of some pair
 };
 
 }  // namespace cdb
