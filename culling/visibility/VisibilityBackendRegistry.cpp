@@ -1,6 +1,7 @@
 #include "culling/visibility/VisibilityBackendRegistry.h"
 
 #include "core/Errors.h"
+#include "culling/visibility/GlFlagBackend.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 
 namespace cdb {
@@ -13,6 +14,13 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           {.needsGl = true},
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlOcclusionQueryBackend>(resources.gl(), options);
+          });
+    r.add("gl-flags",
+          "OpenGL, a batch of tests in one draw whose failing fragments set their piece's flag in a "
+          "storage buffer; one read-back per fetch",
+          {.needsGl = true},
+          [](BackendResources& resources, const VisibilityOptions& options) {
+            return std::make_unique<GlFlagBackend>(resources.gl(), options);
           });
     return r;
   }();
