@@ -101,7 +101,8 @@ void RecordingBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
   log(RecordedOp::Kind::FetchResults).answers = fullyVisible;
 }
 
-void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops) {
+void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops,
+               std::vector<std::vector<std::uint8_t>>* fetched) {
   std::vector<std::uint8_t> answers;
   for (const RecordedOp& op : ops) {
     switch (op.kind) {
@@ -134,6 +135,7 @@ void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops) {
         break;
       case RecordedOp::Kind::FetchResults:
         target.fetchResults(answers);
+        if (fetched != nullptr) fetched->push_back(answers);
         break;
       case RecordedOp::Kind::QueryTriangleRange:
         target.queryTriangles(op.range);

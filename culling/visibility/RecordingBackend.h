@@ -75,7 +75,9 @@ class RecordingBackend final : public VisibilityBackend {
   std::vector<RecordedOp> ops_;
 };
 
-// Issues `ops` again on `target` (through the interface; fetched answers are discarded).
-void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops);
+// Issues `ops` again on `target` (through the interface). Each fetch's answers are appended to
+// `fetched` when one is given (another backend's answers to the recorded work), else discarded.
+void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops,
+               std::vector<std::vector<std::uint8_t>>* fetched = nullptr);
 
 }  // namespace cdb
