@@ -2,14 +2,15 @@
 // The micro-benchmarks of cdbench_bench and what they share. Names (Google Benchmark's
 // --benchmark_filter takes a regular expression over them):
 //
-//   cull/<env>/<strategy>/res:<r>/real_time   a strategy's cull() of the environment's frame
-//   floor/<env>/<strategy>/res:<r>/real_time  that cull's GL work replayed bare (image-based)
+//   cull/<env>/<strategy>/<backend>/res:<r>/manual_time   a strategy's cull() of the frame on a
+//                                             visibility backend (backend "-" for the CPU peers)
+//   floor/<env>/<strategy>/<backend>/res:<r>/real_time   that cull's backend work replayed bare
 //   exact/<env>/ours_sets                     the exact phase on the sets `ours` leaves (800)
 //   exact/<env>/all_objects                   the exact phase on one set of every object
 //   bvh_build/<mesh>/<env>                    one OBB tree build under the env's tree options
 //
-// for env1, env2, env3 (RecordedFrames.h says which frame) and r = 256, 800; each file's head
-// says what its benchmarks measure. Times are milliseconds per iteration; counters are per
+// for env1, env2, env3 (RecordedFrames.h says which frame), every visibility backend that starts
+// here (`cdbench backends`) and r = 256, 800; each file's head says what its benchmarks measure. Times are milliseconds per iteration; counters are per
 // iteration. The GL benchmarks are timed on the wall clock (Google Benchmark then appends
 // /real_time to their names): GL work runs asynchronously, on llvmpipe in its own threads, so the
 // calling thread's CPU time misses most of it. Google Benchmark's default --benchmark_min_time
@@ -27,11 +28,6 @@ namespace cdb::bench {
 
 inline constexpr int kResolutions[] = {256, 800};
 
-// The strategies that decide collisions on the CPU and issue no GL work: they have no floor, and
-// their cull() is their whole collision detection.
-[[nodiscard]] inline bool isCpuPeer(std::string_view strategy) {
-  return strategy == "fcl" || strategy == "bullet" || strategy == "ode";
-}
 
 [[nodiscard]] inline StrategyOptions strategyOptions(const ScenarioConfig& config, int resolution) {
   StrategyOptions options;
@@ -40,9 +36,6 @@ inline constexpr int kResolutions[] = {256, 800};
   return options;
 }
 
-[[nodiscard]] inline VisibilityOptions visibilityOptions(const ScenarioConfig& config) {
-  return {config.culling.conservative, config.culling.rawDepthOffset};
-}
 
 // Runs `body`, turning an exception (a missing dragon, no GL) into a skipped benchmark that
 // carries its message, so that one unavailable environment does not stop the suite.

@@ -1,6 +1,7 @@
 #include "bench/RecordedFrames.h"
 
 #include "core/Errors.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "scenes/AssetPath.h"
 #include "scenes/ConfigLoader.h"
 #include "scenes/SceneBuilder.h"
@@ -15,12 +16,15 @@ RecordedFrames::RecordedFrames(std::filesystem::path configDir, std::vector<std:
                                GlPlatform platform, std::vector<MeasuredFrame> frames)
     : configDir_(std::move(configDir)),
       assetDirs_(std::move(assetDirs)),
-      frames_(std::move(frames)) {
-  try {
-    gl_ = std::make_unique<HeadlessGlContext>(platform);
-  } catch (const std::exception& e) {
-    glError_ = e.what();
-  }
+      frames_(std::move(frames)),
+      resources_(platform) {
+  const auto& registry = VisibilityBackendRegistry::builtin();
+  std::vector<std::string> why;
+  backends_ = registry.available(resources_, &why);
+  for (const auto& name : backends_)
+    backendDescription_ += (backendDescription_.empty() ? "" : "; ") + name + " on " +
+                           registry.create(name, resources_, {})->renderer();
+  for (const auto& w : why) backendDescription_ += (backendDescription_.empty() ? "" : "; ") + w;
 }
 
 const MeasuredFrame& RecordedFrames::measured(const std::string& environment) const {
@@ -59,17 +63,6 @@ const RecordedScene& RecordedFrames::unsimulated(const std::string& environment)
     found = unsimulated_.emplace(environment, std::move(r)).first;
   }
   return found->second;
-}
-
-HeadlessGlContext& RecordedFrames::gl() {
-  if (!gl_) throw RunError("no GL context: " + glError_);
-  return *gl_;
-}
-
-std::string RecordedFrames::glDescription() const {
-  if (!gl_) return "none: " + glError_;
-  const GlInfo& info = gl_->info();
-  return info.glRenderer + " (" + info.glVersion + ", EGL " + info.platform + ")";
 }
 
 }  // namespace cdb::bench

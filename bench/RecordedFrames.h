@@ -1,8 +1,8 @@
 #pragma once
 // What the micro-benchmarks measure on: one recorded frame per environment in which objects touch.
 // An environment's config is simulated on first use by a selected benchmark and kept for the rest
-// of the run, so a --benchmark_filter that selects only BVH builds simulates nothing. One GL
-// context, opened up front, serves every GL benchmark. Benchmarks run one at a time on the main
+// of the run, so a --benchmark_filter that selects only BVH builds simulates nothing. One set of
+// backend resources (one GL context, opened up front) serves every benchmark of every backend. Benchmarks run one at a time on the main
 // thread, so nothing here locks.
 #include <filesystem>
 #include <map>
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "culling/visibility/BackendResources.h"
 #include "harness/RecordedScene.h"
-#include "render/HeadlessGlContext.h"
 
 namespace cdb::bench {
 
@@ -37,8 +37,9 @@ struct MeasuredFrame {
 
 class RecordedFrames {
  public:
-  // Opens the GL context on `platform` now (a failure is kept and thrown by gl(), so benchmarks
-  // without GL still run) and simulates nothing yet. `assetDirs` as for `cdbench run --assets`.
+  // Opens the GL context on `platform` now (a failure leaves the GL backends out of backends(), so
+  // the other benchmarks still run) and simulates nothing yet. `assetDirs` as for
+  // `cdbench run --assets`.
   RecordedFrames(std::filesystem::path configDir, std::vector<std::string> assetDirs,
                  GlPlatform platform, std::vector<MeasuredFrame> frames);
 
@@ -57,17 +58,19 @@ class RecordedFrames {
   // tree options, for the BVH build.
   [[nodiscard]] const RecordedScene& unsimulated(const std::string& environment);
 
-  // Throws RunError with the reason when no context opened.
-  [[nodiscard]] HeadlessGlContext& gl();
-  // The renderer, or why there is none (for the JSON context).
-  [[nodiscard]] std::string glDescription() const;
+  [[nodiscard]] BackendResources& resources() { return resources_; }
+  // The visibility backends that start here, in registry order.
+  [[nodiscard]] const std::vector<std::string>& backends() const { return backends_; }
+  // Each backend's renderer, or why it does not start (for the JSON context).
+  [[nodiscard]] std::string backendDescription() const { return backendDescription_; }
 
  private:
   std::filesystem::path configDir_;
   std::vector<std::string> assetDirs_;
   std::vector<MeasuredFrame> frames_;
-  std::unique_ptr<HeadlessGlContext> gl_;
-  std::string glError_;
+  BackendResources resources_;
+  std::vector<std::string> backends_;
+  std::string backendDescription_;
   std::map<std::string, RecordedScene> recorded_;
   std::map<std::string, RecordedScene> unsimulated_;
 };

@@ -1,8 +1,11 @@
 // The backend's floor for one strategy on one recorded frame: the strategy's culling time against
-// the same draws, queries and fetches replayed as plain GL commands with no algorithm around them
-// (GlDrawFloor). Their ratio is the strategy's overhead over what the backend must do anyway.
+// the same backend work issued again with no algorithm around it (BackendFloor: bare GL commands
+// for gl-queries, the recorded calls replayed for the other backends), each cull followed by a
+// replay, `repeats` times. Their ratio is the strategy's overhead over what the backend must do
+// anyway.
 //
-//   cdbench_floor CONFIG --strategy cullide --resolution 800 --frame 150 [--objects N] [--repeats 3]
+//   cdbench_floor CONFIG --strategy cullide --resolution 800 --frame 150 [--visibility gl-queries]
+//                 [--objects N] [--repeats 3]
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -12,15 +15,16 @@
 #include "core/Errors.h"
 #include "harness/FloorComparison.h"
 #include "harness/RecordedScene.h"
-#include "render/HeadlessGlContext.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"backend floor: a strategy's culling time against its own GL work replayed bare"};
-  std::string config, strategyName = "cullide";
+  std::string config, strategyName = "cullide", backend(cdb::VisibilityBackendRegistry::kDefault);
   std::vector<std::string> assets;
   int resolution = 800, frame = 150, objects = 0, repeats = 3;
   app.add_option("config", config)->required();
   app.add_option("--strategy", strategyName);
+  app.add_option("--visibility", backend, "visibility backend (cdbench backends)");
   app.add_option("--resolution", resolution);
   app.add_option("--frame", frame, "simulated frame to measure");
   app.add_option("--objects", objects, "count of the swept group (0: the config's)");
@@ -30,9 +34,11 @@ int main(int argc, char** argv) {
   try {
     using namespace cdb;
     const RecordedScene recorded = recordScene(config, objects, frame + 1, assets);
-    HeadlessGlContext gl(GlPlatform::Auto);
-    const FloorComparison c = compareWithFloor(gl, recorded, strategyName, resolution, frame, repeats);
-    std::printf("renderer: %s\n", gl.info().glRenderer.c_str());
+    BackendResources resources(GlPlatform::Auto);
+    const FloorComparison c =
+        compareWithFloor(resources, backend, recorded, strategyName, resolution, frame, repeats);
+    std::printf("backend: %s on %s\n", backend.c_str(),
+                VisibilityBackendRegistry::builtin().create(backend, resources, {})->renderer().c_str());
     std::printf("%s %s res=%d frame=%d: %llu queries, %llu draws, %llu passes, %llu fetches\n",
                 recorded.config.environment.c_str(), strategyName.c_str(), resolution, frame,
                 static_cast<unsigned long long>(c.work.queries),

@@ -1,7 +1,9 @@
-// cull/<env>/<strategy>/res:<r>: a strategy's cull() of the environment's measured frame, what
-// `cdbench run` reports as cull_ms: the culling alone, without the exact phase (exact/...), on the
-// GL occlusion-query backend. For the CPU peers, which decide the colliding pairs themselves,
-// cull() is their whole collision detection and the resolution changes nothing.
+// cull/<env>/<strategy>/<backend>/res:<r>: a strategy's cull() of the environment's measured
+// frame on a visibility backend, what `cdbench run` reports as cull_ms: each iteration is one
+// detectFrame() (the per-frame function the runner times), and the iteration's time is its
+// culling part, without the exact phase (exact/... and the exact_ms counter). For the CPU peers,
+// which decide the colliding pairs themselves and use no backend (backend "-"), cull() is their
+// whole collision detection and the resolution changes nothing.
 //
 // Set-up per run of the benchmark function, untimed: the backend, its warm-up at the resolution
 // (shader variants, framebuffer), the strategy's attach (hierarchies) and one cull of the frame:
@@ -12,8 +14,10 @@
 #include <string>
 
 #include "bench/BenchmarkSuite.h"
-#include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/exact/ExactPhase.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/BackendWarmUp.h"
+#include "harness/FrameDetection.h"
 
 namespace cdb::bench {
 
@@ -21,59 +25,72 @@ namespace {
 
 void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
                        const std::string& environment, const std::string& strategyName,
-                       int resolution) {
+                       const std::string& backendName, int resolution) {
   const RecordedScene& recorded = frames.recorded(environment);
-  const FrameInput input{frames.poses(environment), frames.measured(environment).frame};
-  GlOcclusionQueryBackend backend(frames.gl(), visibilityOptions(recorded.config));
-  backend.attachScene(recorded.scene);
-  warmUpBackend(backend, recorded.scene, input.poses, resolution);
+  const auto poses = frames.poses(environment);
+  const int frame = frames.measured(environment).frame;
+  const auto backend = VisibilityBackendRegistry::builtin().create(
+      backendName, frames.resources(), visibilityOptionsOf(recorded.config.culling));
+  backend->attachScene(recorded.scene);
+  warmUpBackend(*backend, recorded.scene, poses, resolution);
   auto strategy = StrategyRegistry::builtin().create(strategyName,
                                                      strategyOptions(recorded.config, resolution));
-  strategy->attach(recorded.scene, backend);
-  (void)strategy->cull(input);
+  strategy->attach(recorded.scene, *backend);
+  ExactPhase exact(recorded.scene);
+  (void)detectFrame(*strategy, exact, poses, frame);
 
   CullingCounters total;
-  std::uint64_t decidedPairs = 0;
-  bool decided = false;
+  double exactMs = 0;
+  std::uint64_t collidingPairs = 0;
   for (auto _ : state) {
-    const CullingResult result = strategy->cull(input);
-    total.visibility += result.counters.visibility;
-    total.sets += result.counters.sets;
-    total.pcsSize += result.counters.pcsSize;
-    total.pcsTriangles += result.counters.pcsTriangles;
-    if (result.decided) {
-      decided = true;
-      decidedPairs += result.decided->collidingPairs.size();
-    }
+    const DetectedFrame detected = detectFrame(*strategy, exact, poses, frame);
+    state.SetIterationTime(detected.cullMs / 1e3);
+    const CullingCounters& c = detected.culled.counters;
+    total.visibility += c.visibility;
+    total.sets += c.sets;
+    total.pcsSize += c.pcsSize;
+    total.pcsTriangles += c.pcsTriangles;
+    exactMs += detected.exactMs;
+    collidingPairs += detected.report.collidingPairs.size();
   }
   state.counters["queries"] = perIteration(double(total.visibility.queries));
   state.counters["draws"] = perIteration(double(total.visibility.draws));
   state.counters["triangles"] = perIteration(double(total.visibility.trianglesDrawn));
+  state.counters["pixels_tested"] = perIteration(double(total.visibility.pixelsTested));
+  state.counters["pixels_written"] = perIteration(double(total.visibility.pixelsWritten));
   state.counters["sets"] = perIteration(double(total.sets));
   state.counters["pcs_objects"] = perIteration(double(total.pcsSize));
   state.counters["pcs_triangles"] = perIteration(double(total.pcsTriangles));
-  // The CPU peers' answer, to set beside exact/<env>/...'s colliding_pairs.
-  if (decided) state.counters["colliding_pairs"] = perIteration(double(decidedPairs));
+  state.counters["exact_ms"] = perIteration(exactMs);
+  state.counters["colliding_pairs"] = perIteration(double(collidingPairs));
 }
 
 }  // namespace
 
 void registerCullBenchmarks(RecordedFrames& frames) {
   for (const MeasuredFrame& m : frames.frames())
-    for (const std::string& strategy : StrategyRegistry::builtin().names())
-      for (int resolution : kResolutions) {
-        const std::string name =
-            "cull/" + m.environment + "/" + strategy + "/res:" + std::to_string(resolution);
-        benchmark::RegisterBenchmark(
-            name.c_str(),
-            [&frames, environment = m.environment, strategy, resolution](benchmark::State& state) {
-              skipOnError(state, [&] {
-                cullMeasuredFrame(state, frames, environment, strategy, resolution);
-              });
-            })
-            ->Unit(benchmark::kMillisecond)
-            ->UseRealTime();
-      }
+    for (const std::string& strategy : StrategyRegistry::builtin().names()) {
+      // A CPU peer uses no backend: one entry, on the default one (it draws nothing on it).
+      const std::vector<std::string> backends =
+          StrategyRegistry::builtin().isCpuPeer(strategy) ? std::vector<std::string>{"-"} : frames.backends();
+      for (const std::string& backend : backends)
+        for (int resolution : kResolutions) {
+          const std::string name = "cull/" + m.environment + "/" + strategy + "/" + backend +
+                                   "/res:" + std::to_string(resolution);
+          benchmark::RegisterBenchmark(
+              name.c_str(),
+              [&frames, environment = m.environment, strategy, backend,
+               resolution](benchmark::State& state) {
+                skipOnError(state, [&] {
+                  const std::string runsOn =
+                      backend == "-" ? std::string(VisibilityBackendRegistry::kDefault) : backend;
+                  cullMeasuredFrame(state, frames, environment, strategy, runsOn, resolution);
+                });
+              })
+              ->Unit(benchmark::kMillisecond)
+              ->UseManualTime();
+        }
+    }
 }
 
 }  // namespace cdb::bench

@@ -6,14 +6,15 @@
 //               kept: the exact work left after culling.
 //  all_objects: one set holding every object with all its triangles: the exact phase doing the
 //               whole job with no culling in front of it, the work culling saves.
-// Set-up, untimed: ours' sets (computed once per environment, on GL, and kept: plain data) and one
+// Set-up, untimed: ours' sets (computed once per environment on the config's visibility backend,
+// and kept: plain data) and one
 // run of the phase, which sizes its buffers.
 #include <map>
 #include <string>
 
 #include "bench/BenchmarkSuite.h"
 #include "culling/exact/ExactPhase.h"
-#include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/BackendWarmUp.h"
 
 namespace cdb::bench {
@@ -28,7 +29,10 @@ const PotentiallyCollidingSets& oursSets(RecordedFrames& frames, const std::stri
   if (found != kept.end()) return found->second;
   const RecordedScene& recorded = frames.recorded(environment);
   const FrameInput input{frames.poses(environment), frames.measured(environment).frame};
-  GlOcclusionQueryBackend backend(frames.gl(), visibilityOptions(recorded.config));
+  const auto owned = VisibilityBackendRegistry::builtin().create(
+      backendNameOf(recorded.config.culling), frames.resources(),
+      visibilityOptionsOf(recorded.config.culling));
+  VisibilityBackend& backend = *owned;
   backend.attachScene(recorded.scene);
   warmUpBackend(backend, recorded.scene, input.poses, kSetsResolution);
   auto ours =

@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
       applyOverride(measured, "--frame", f, [](auto& m, int k) { m.frame = k; });
     bench::RecordedFrames frames(configs, assets, parseGlPlatform(glPlatform), measured);
 
-    benchmark::AddCustomContext("cdbench_gl", frames.glDescription());
+    benchmark::AddCustomContext("cdbench_backends", frames.backendDescription());
     benchmark::AddCustomContext("cdbench_commit", probeMachine().gitCommit);
     for (const auto& m : frames.frames())
       benchmark::AddCustomContext("cdbench_" + m.environment, describe(frames, m));

@@ -28,18 +28,23 @@ const StrategyRegistry& StrategyRegistry::builtin() {
             return std::make_unique<HierarchicalCollisionIndependentSets>(o);
           });
     r.add("fcl", "CPU peer: FCL 0.7, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
-          [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); });
+          [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); }, Kind::CpuPeer);
     r.add("bullet", "CPU peer: Bullet 3.24 (double), btDbvtBroadphase, GImpact meshes, margin 0",
-          [](const StrategyOptions& o) { return std::make_unique<BulletPeer>(o); });
+          [](const StrategyOptions& o) { return std::make_unique<BulletPeer>(o); }, Kind::CpuPeer);
     r.add("ode", "CPU peer: ODE 0.16, hash space, OPCODE trimesh-trimesh collider",
-          [](const StrategyOptions& o) { return std::make_unique<OdePeer>(o); });
+          [](const StrategyOptions& o) { return std::make_unique<OdePeer>(o); }, Kind::CpuPeer);
     return r;
   }();
   return registry;
 }
 
-void StrategyRegistry::add(std::string name, std::string description, Factory factory) {
-  entries_.push_back({std::move(name), std::move(description), std::move(factory)});
+void StrategyRegistry::add(std::string name, std::string description, Factory factory, Kind kind) {
+  entries_.push_back({std::move(name), std::move(description), std::move(factory), kind});
+}
+
+StrategyRegistry::Kind StrategyRegistry::kind(std::string_view name) const {
+  validate({std::string(name)});
+  return find(name)->kind;
 }
 
 const StrategyRegistry::Entry* StrategyRegistry::find(std::string_view name) const {

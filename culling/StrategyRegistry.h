@@ -24,13 +24,21 @@ class StrategyRegistry {
   // The registry with every strategy of the project.
   static const StrategyRegistry& builtin();
 
-  void add(std::string name, std::string description, Factory factory);
+  // What an entry is: an image-based culling strategy (asks a visibility backend, leaves sets for
+  // the exact phase) or a CPU peer (decides the colliding pairs itself, draws nothing).
+  enum class Kind { ImageBased, CpuPeer };
+
+  void add(std::string name, std::string description, Factory factory,
+           Kind kind = Kind::ImageBased);
   // Throws InputError naming the unknown strategy and listing the known ones.
   [[nodiscard]] std::unique_ptr<CullingStrategy> create(std::string_view name,
                                                         const StrategyOptions& options) const;
   [[nodiscard]] bool contains(std::string_view name) const;
   [[nodiscard]] std::vector<std::string> names() const;
   [[nodiscard]] std::string description(std::string_view name) const;
+  // Throws InputError for an unknown name.
+  [[nodiscard]] Kind kind(std::string_view name) const;
+  [[nodiscard]] bool isCpuPeer(std::string_view name) const { return kind(name) == Kind::CpuPeer; }
   // Throws InputError for the first unknown name.
   void validate(const std::vector<std::string>& names) const;
 
@@ -39,6 +47,7 @@ class StrategyRegistry {
     std::string name;
     std::string description;
     Factory factory;
+    Kind kind = Kind::ImageBased;
   };
   const Entry* find(std::string_view name) const;
   std::vector<Entry> entries_;

@@ -1,5 +1,6 @@
 #include "harness/BackendWarmUp.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "core/Aabb.h"
@@ -27,6 +28,10 @@ void warmUpBackend(VisibilityBackend& backend, const SceneGeometry& scene,
     backend.writeRange({0, 0, triangles});
     backend.writeTriangles(0, some);
     backend.writeBox(0, box);
+    (void)backend.queryTriangles({0, 0, std::min<std::uint32_t>(triangles, 2)});
+    (void)backend.queryTriangles(0, some);
+    (void)backend.queryBoxes(0, std::span<const OrientedBox>(&box, 1));
+    backend.writeBoxes(0, std::span<const OrientedBox>(&box, 1));
   }
   backend.fetchResults(answers);
 }

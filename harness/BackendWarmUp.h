@@ -1,6 +1,6 @@
 #pragma once
 // Issues every kind of draw the strategies use (queries and writes of mesh ranges, triangle lists
-// and boxes, in each depth mode) once at a resolution, so that shader compilation and
+// and boxes, single and batched, in each depth mode) once at a resolution, so that shader compilation and
 // framebuffer allocation happen before the first timed frame rather than inside it.
 #include <span>
 

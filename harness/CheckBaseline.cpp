@@ -11,7 +11,7 @@ namespace cdb {
 
 namespace {
 
-constexpr int kBaselineFormat = 1;
+constexpr int kBaselineFormat = 2;  // 2: ratios and renderers per visibility backend
 
 std::string formatFactor(double x) {
   char buf[32];
@@ -35,15 +35,16 @@ CheckBaseline readCheckBaseline(const std::filesystem::path& file) {
       throw InputError(file.string() + ": format: expected " + std::to_string(kBaselineFormat));
     b.createdUtc = j.at("created_utc").get<std::string>();
     b.machine = j.at("machine");
-    b.gl = j.at("gl");
-    b.glRenderer = b.gl.at("renderer").get<std::string>();
+    b.gl = j.value("gl", nlohmann::json());
+    b.renderers = j.at("renderers").get<std::map<std::string, std::string>>();
     b.buildType = b.machine.at("build_type").get<std::string>();
     b.commandLine = j.at("command_line").get<std::vector<std::string>>();
     for (const auto& [key, e] : j.at("ratios").items()) {
       const std::string kind = e.at("kind").get<std::string>();
       if (kind != ratioKindName(RatioKind::Speedup) && kind != ratioKindName(RatioKind::OverFloor))
         throw InputError(file.string() + ": ratios: " + key + ": kind: expected speedup or over_floor");
-      b.ratios[key] = {key, kind == ratioKindName(RatioKind::Speedup) ? RatioKind::Speedup : RatioKind::OverFloor,
+      b.ratios[key] = {key, e.at("backend").get<std::string>(),
+                       kind == ratioKindName(RatioKind::Speedup) ? RatioKind::Speedup : RatioKind::OverFloor,
                        e.at("value").get<double>(), e.at("numerator_ms").get<double>(),
                        e.at("denominator_ms").get<double>()};
     }
@@ -60,6 +61,7 @@ void writeCheckBaseline(const CheckBaseline& b, const std::filesystem::path& fil
   j["command_line"] = b.commandLine;
   j["machine"] = b.machine;
   j["gl"] = b.gl;
+  j["renderers"] = b.renderers;
   // For the reader; the rule itself is judgeRatio's.
   j["tolerance"] = {
       {"speedup", "fails below baseline / " + formatFactor(kSpeedupTolerance)},
@@ -67,7 +69,8 @@ void writeCheckBaseline(const CheckBaseline& b, const std::filesystem::path& fil
                          formatFactor(kFloorAllowedAtLeast) + ")"}};
   j["ratios"] = nlohmann::json::object();
   for (const auto& [key, r] : b.ratios)
-    j["ratios"][key] = {{"kind", ratioKindName(r.kind)},
+    j["ratios"][key] = {{"backend", r.backend},
+                        {"kind", ratioKindName(r.kind)},
                         {"value", r.value},
                         {"numerator_ms", r.numeratorMs},
                         {"denominator_ms", r.denominatorMs}};

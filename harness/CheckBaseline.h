@@ -15,10 +15,12 @@ namespace cdb {
 
 struct CheckBaseline {
   std::string createdUtc;
-  std::string glRenderer;  // GL_RENDERER: ratios of another renderer are not comparable
+  // Per visibility backend, what rendered (VisibilityBackend::renderer(): the GL renderer, or the
+  // CPU rasteriser's instruction set and threads): ratios of another renderer are not comparable.
+  std::map<std::string, std::string> renderers;
   std::string buildType;   // CMAKE_BUILD_TYPE: nor are those of an unoptimised build
   nlohmann::json machine;  // MachineInfo, for the reader
-  nlohmann::json gl;       // platform, vendor, renderer, version
+  nlohmann::json gl;       // platform, vendor, renderer, version (null when no GL was opened)
   std::vector<std::string> commandLine;
   std::map<std::string, RatioMeasurement> ratios;  // by RatioMeasurement::key
 };

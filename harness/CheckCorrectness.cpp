@@ -3,12 +3,14 @@
 #include "core/Errors.h"
 #include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
-#include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/BackendWarmUp.h"
+#include "harness/FrameDetection.h"
 
 namespace cdb {
 
-std::vector<CorrectnessRow> checkCorrectness(HeadlessGlContext& gl, CheckScenes& scenes,
+std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const std::string& backendName,
+                                             bool withPeers, CheckScenes& scenes,
                                              const std::vector<CorrectnessCase>& cases,
                                              const std::vector<std::string>& strategies,
                                              const StrategyRegistry& registry) {
@@ -20,9 +22,9 @@ std::vector<CorrectnessRow> checkCorrectness(HeadlessGlContext& gl, CheckScenes&
         throw InputError(c.scene.label() + ": frame " + std::to_string(f) + " out of the " +
                          std::to_string(recorded.recording.frameCount()) + " simulated");
     const SceneGeometry& scene = recorded.scene;
-    GlOcclusionQueryBackend backend(
-        gl, {recorded.config.culling.conservative, recorded.config.culling.rawDepthOffset});
-    backend.attachScene(scene);
+    const auto backend = VisibilityBackendRegistry::builtin().create(
+        backendName, resources, visibilityOptionsOf(recorded.config.culling));
+    backend->attachScene(scene);
     ExactPhase exact(scene);
     std::vector<std::vector<ObjectPair>> truth;
     {
@@ -38,27 +40,32 @@ std::vector<CorrectnessRow> checkCorrectness(HeadlessGlContext& gl, CheckScenes&
         options.resolution = resolution;
         options.culling = recorded.config.culling;
         auto strategy = registry.create(name, options);
-        strategy->attach(scene, backend);
-        warmUpBackend(backend, scene, recorded.recording.frame(0), resolution);
+        strategy->attach(scene, *backend);
+        warmUpBackend(*backend, scene, recorded.recording.frame(0), resolution);
         bool decidedItself = false;
+        std::vector<CorrectnessRow> strategyRows;
         for (std::size_t i = 0; i < c.frames.size(); ++i) {
           const int f = c.frames[i];
-          const auto poses = recorded.recording.frame(static_cast<std::uint32_t>(f));
-          CullingResult culled = strategy->cull({poses, f});
-          decidedItself = culled.decided.has_value();
-          const CollisionReport report =
-              decidedItself ? std::move(*culled.decided) : exact.run(poses, culled.sets);
+          const DetectedFrame detected = detectFrame(
+              *strategy, exact, recorded.recording.frame(static_cast<std::uint32_t>(f)), f);
+          decidedItself = detected.decidedByStrategy();
           CorrectnessRow row;
+          row.backend = decidedItself ? "-" : backendName;
           row.scene = c.scene.label();
           row.frame = f;
           row.strategy = name;
           row.resolution = decidedItself ? 0 : resolution;
           row.truthPairs = truth[i].size();
-          row.foundPairs = report.collidingPairs.size();
-          row.comparison = compareWithTruth(truth[i], report.collidingPairs, culled, scene.objectCount());
-          rows.push_back(std::move(row));
+          row.foundPairs = detected.report.collidingPairs.size();
+          row.comparison = compareWithTruth(truth[i], detected.report.collidingPairs, detected.culled,
+                                            scene.objectCount());
+          strategyRows.push_back(std::move(row));
         }
-        if (decidedItself) break;
+        if (decidedItself) {
+          if (withPeers) rows.insert(rows.end(), strategyRows.begin(), strategyRows.end());
+          break;
+        }
+        rows.insert(rows.end(), strategyRows.begin(), strategyRows.end());
       }
     }
   }

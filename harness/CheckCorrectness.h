@@ -9,12 +9,13 @@
 #include "harness/CheckPlan.h"
 #include "harness/CheckScenes.h"
 #include "harness/TruthComparison.h"
-#include "render/HeadlessGlContext.h"
+#include "culling/visibility/BackendResources.h"
 
 namespace cdb {
 
 struct CorrectnessRow {
-  std::string scene;  // CheckScene::label()
+  std::string backend;  // the visibility backend ("-" for a CPU peer, which uses none)
+  std::string scene;    // CheckScene::label()
   int frame = 0;
   std::string strategy;
   int resolution = 0;  // 0: a CPU peer, which decides the pairs itself and draws nothing
@@ -30,10 +31,13 @@ struct CorrectnessRow {
   }
 };
 
-// Every case of `plan` for each of `strategies` (created by `registry`). A strategy that decides
-// the pairs itself (CullingResult::decided: the CPU peers) runs at the first resolution only:
-// the frame-buffer size does not enter its answer.
-[[nodiscard]] std::vector<CorrectnessRow> checkCorrectness(HeadlessGlContext& gl, CheckScenes& scenes,
+// Every case of `plan` for each of `strategies` (created by `registry`) on the visibility backend
+// `backend`. A strategy that decides the pairs itself (CullingResult::decided: the CPU peers)
+// runs at the first resolution only, and only when `withPeers`: neither the frame-buffer size nor
+// the backend enters its answer.
+[[nodiscard]] std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources,
+                                                           const std::string& backend, bool withPeers,
+                                                           CheckScenes& scenes,
                                                            const std::vector<CorrectnessCase>& cases,
                                                            const std::vector<std::string>& strategies,
                                                            const StrategyRegistry& registry);

@@ -4,9 +4,7 @@
 #include <chrono>
 
 #include "core/Errors.h"
-#include "culling/visibility/GlDrawFloor.h"
-#include "culling/visibility/GlOcclusionQueryBackend.h"
-#include "culling/visibility/RecordingBackend.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/BackendWarmUp.h"
 #include "harness/FloorComparison.h"
 
@@ -33,24 +31,27 @@ struct TimedRound {
 };
 
 // The median round (the lower middle one of an even count).
-RatioMeasurement medianRound(std::vector<TimedRound> rounds, std::string key, RatioKind kind) {
+RatioMeasurement medianRound(std::vector<TimedRound> rounds, const std::string& backend,
+                             const std::string& key, RatioKind kind) {
   std::sort(rounds.begin(), rounds.end(),
             [](const TimedRound& a, const TimedRound& b) { return a.ratio() < b.ratio(); });
   const TimedRound& m = rounds[(rounds.size() - 1) / 2];
-  return {std::move(key), kind, m.ratio(), m.numerator * 1e3, m.denominator * 1e3};
+  return {backend + ": " + key, backend, kind, m.ratio(), m.numerator * 1e3, m.denominator * 1e3};
 }
 
 }  // namespace
 
-std::vector<RatioMeasurement> measureSpeedups(HeadlessGlContext& gl, CheckScenes& scenes,
+std::vector<RatioMeasurement> measureSpeedups(BackendResources& resources, const std::string& backendName,
+                                              CheckScenes& scenes,
                                               const std::vector<SpeedupCase>& cases,
                                               const StrategyRegistry& registry) {
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
     const auto poses = framePoses(recorded, c.frame, c.scene.label());
-    GlOcclusionQueryBackend backend(
-        gl, {recorded.config.culling.conservative, recorded.config.culling.rawDepthOffset});
+    const auto owned = VisibilityBackendRegistry::builtin().create(
+        backendName, resources, visibilityOptionsOf(recorded.config.culling));
+    VisibilityBackend& backend = *owned;
     backend.attachScene(recorded.scene);
     warmUpBackend(backend, recorded.scene, poses, c.resolution);
     StrategyOptions options;
@@ -73,64 +74,45 @@ std::vector<RatioMeasurement> measureSpeedups(HeadlessGlContext& gl, CheckScenes
         rounds[r].numerator = timedCullSeconds(*slow, input);
       }
     }
-    out.push_back(medianRound(std::move(rounds), c.key(), RatioKind::Speedup));
+    out.push_back(medianRound(std::move(rounds), backendName, c.key(), RatioKind::Speedup));
   }
   return out;
 }
 
-std::vector<RatioMeasurement> measureFloors(HeadlessGlContext& gl, CheckScenes& scenes,
-                                            const std::vector<FloorCase>& cases,
+std::vector<RatioMeasurement> measureFloors(BackendResources& resources, const std::string& backend,
+                                            CheckScenes& scenes, const std::vector<FloorCase>& cases,
                                             const std::vector<std::string>& strategies,
                                             const StrategyRegistry& registry,
                                             std::vector<std::string>& withoutFloor) {
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
-    const FrameInput input{framePoses(recorded, c.frame, c.scene.label()), c.frame};
-    const VisibilityOptions visibility{recorded.config.culling.conservative,
-                                       recorded.config.culling.rawDepthOffset};
-    StrategyOptions options;
-    options.resolution = c.resolution;
-    options.culling = recorded.config.culling;
+    (void)framePoses(recorded, c.frame, c.scene.label());
     for (const auto& name : strategies) {
-      GlOcclusionQueryBackend backend(gl, visibility);
-      backend.attachScene(recorded.scene);
-      warmUpBackend(backend, recorded.scene, input.poses, c.resolution);
-      RecordingBackend recorder(backend);
-      const VisibilityCounters work =
-          recordCullWork(recorder, recorded, name, c.resolution, c.frame, registry);
-      if (work.draws == 0 && work.queries == 0) {
+      FloorSetup setup(resources, backend, recorded, name, c.resolution, c.frame, registry);
+      if (setup.work().draws == 0 && setup.work().queries == 0) {
         if (std::find(withoutFloor.begin(), withoutFloor.end(), name) == withoutFloor.end())
           withoutFloor.push_back(name);
         continue;
       }
-      // The strategy on the bare backend, with the recorded cull's history.
-      auto strategy = registry.create(name, options);
-      strategy->attach(recorded.scene, backend);
-      (void)strategy->cull(input);
-      GlDrawFloor floor(gl, visibility);
-      GlDrawFloor::Prepared replay = floor.prepare(recorder.ops());
-      floor.replayOnce(replay);  // compiles the floor's shader variants
       const auto replaySeconds = [&] {
-        const auto t0 = std::chrono::steady_clock::now();
-        floor.replayOnce(replay);
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double s = setup.timeFloor();
         // A replay that answers differently did not do the strategy's work: no ratio to trust.
-        if (!replay.answersMatch())
-          throw RunError(c.key(name) + ": the replayed GL work answered the queries differently");
+        if (!setup.answersMatch())
+          throw RunError(backend + ": " + c.key(name) + ": the replayed work answered the queries differently");
         return s;
       };
       std::vector<TimedRound> rounds(static_cast<std::size_t>(std::max(c.rounds, 1)));
       for (std::size_t r = 0; r < rounds.size(); ++r) {
         if (r % 2 == 0) {
-          rounds[r].numerator = timedCullSeconds(*strategy, input);
+          rounds[r].numerator = setup.timeCull();
           rounds[r].denominator = replaySeconds();
         } else {
           rounds[r].denominator = replaySeconds();
-          rounds[r].numerator = timedCullSeconds(*strategy, input);
+          rounds[r].numerator = setup.timeCull();
         }
       }
-      out.push_back(medianRound(std::move(rounds), c.key(name), RatioKind::OverFloor));
+      out.push_back(medianRound(std::move(rounds), backend, c.key(name), RatioKind::OverFloor));
     }
   }
   return out;

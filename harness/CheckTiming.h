@@ -7,7 +7,7 @@
 #include "culling/StrategyRegistry.h"
 #include "harness/CheckPlan.h"
 #include "harness/CheckScenes.h"
-#include "render/HeadlessGlContext.h"
+#include "culling/visibility/BackendResources.h"
 
 namespace cdb {
 
@@ -21,24 +21,31 @@ enum class RatioKind {
 // changes from second to second, and a ratio of two times taken seconds apart (or of each side's
 // best over all rounds) follows those changes; the median drops a round hit on one side only.
 struct RatioMeasurement {
-  std::string key;  // SpeedupCase::key() or FloorCase::key(strategy): the baseline's key
+  // "<backend>: " + SpeedupCase::key() or FloorCase::key(strategy): the baseline's key
+  std::string key;
+  std::string backend;  // the visibility backend both sides ran on
   RatioKind kind = RatioKind::Speedup;
   double value = 0;
   double numeratorMs = 0, denominatorMs = 0;  // the two times of the median round
 };
 
-// Each speedup case: both strategies attached to one backend, one untimed cull each, then
+// Each speedup case on the visibility backend `backend`: both strategies attached to one backend, one untimed cull each, then
 // `repeats` rounds in which each culls the frame once, the order alternating from round to round
 // so that neither always runs first after the other.
-[[nodiscard]] std::vector<RatioMeasurement> measureSpeedups(HeadlessGlContext& gl, CheckScenes& scenes,
+[[nodiscard]] std::vector<RatioMeasurement> measureSpeedups(BackendResources& resources,
+                                                            const std::string& backend,
+                                                            CheckScenes& scenes,
                                                             const std::vector<SpeedupCase>& cases,
                                                             const StrategyRegistry& registry);
 
-// Each floor case for each of `strategies` that issues GL work: its work recorded from one cull
-// (recordCullWork) and prepared for replay, one untimed cull and replay, then `rounds` rounds of
-// one cull and one replay, the order alternating. A strategy that issues no GL work (a CPU peer)
-// has no floor and no measurement: its name is added to `withoutFloor` (once) instead.
-[[nodiscard]] std::vector<RatioMeasurement> measureFloors(HeadlessGlContext& gl, CheckScenes& scenes,
+// Each floor case for each of `strategies` that issues backend work, on `backend`: its work
+// recorded from one cull and prepared for replay on the backend's floor (FloorSetup), one untimed
+// cull and replay, then `rounds` rounds of one cull and one replay, the order alternating. A
+// strategy that issues no backend work (a CPU peer) has no floor and no measurement: its name is
+// added to `withoutFloor` (once) instead.
+[[nodiscard]] std::vector<RatioMeasurement> measureFloors(BackendResources& resources,
+                                                          const std::string& backend,
+                                                          CheckScenes& scenes,
                                                           const std::vector<FloorCase>& cases,
                                                           const std::vector<std::string>& strategies,
                                                           const StrategyRegistry& registry,

@@ -4,10 +4,6 @@
 #include <chrono>
 
 #include "core/Errors.h"
-#include "culling/StrategyRegistry.h"
-#include "culling/visibility/GlDrawFloor.h"
-#include "culling/visibility/GlOcclusionQueryBackend.h"
-#include "culling/visibility/RecordingBackend.h"
 #include "harness/BackendWarmUp.h"
 
 namespace cdb {
@@ -19,6 +15,13 @@ std::span<const Pose> posesOf(const RecordedScene& recorded, int frame) {
     throw InputError("frame " + std::to_string(frame) + ": the recording has " +
                      std::to_string(recorded.recording.frameCount()) + " frames");
   return recorded.recording.frame(static_cast<std::uint32_t>(frame));
+}
+
+template <typename F>
+double secondsOf(F&& work) {
+  const auto t0 = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
@@ -40,45 +43,58 @@ VisibilityCounters recordCullWork(RecordingBackend& recorder, const RecordedScen
   return recorder.counters();
 }
 
-FloorComparison compareWithFloor(HeadlessGlContext& gl, const RecordedScene& recorded,
-                                 const std::string& strategyName, int resolution, int frame,
-                                 int repeats, const StrategyRegistry& registry) {
+FloorSetup::FloorSetup(BackendResources& resources, const std::string& backend,
+                       const RecordedScene& recorded, const std::string& strategy, int resolution,
+                       int frame, const StrategyRegistry& registry)
+    : recorded_(recorded), frame_(frame) {
   const auto poses = posesOf(recorded, frame);
-  repeats = std::max(repeats, 1);
-  const VisibilityOptions options{recorded.config.culling.conservative,
-                                  recorded.config.culling.rawDepthOffset};
+  const auto& backends = VisibilityBackendRegistry::builtin();
+  const VisibilityOptions options = visibilityOptionsOf(recorded.config.culling);
+  backend_ = backends.create(backend, resources, options);
+  backend_->attachScene(recorded.scene);
+  warmUpBackend(*backend_, recorded.scene, poses, resolution);
+  recorder_ = std::make_unique<RecordingBackend>(*backend_);
+  work_ = recordCullWork(*recorder_, recorded, strategy, resolution, frame, registry);
+
+  // The strategy alone, on the bare backend, with the same history.
   StrategyOptions so;
   so.resolution = resolution;
   so.culling = recorded.config.culling;
+  strategy_ = registry.create(strategy, so);
+  strategy_->attach(recorded.scene, *backend_);
+  (void)strategy_->cull({poses, frame});
 
-  GlOcclusionQueryBackend backend(gl, options);
-  backend.attachScene(recorded.scene);
-  warmUpBackend(backend, recorded.scene, poses, resolution);
+  floor_ = backends.createFloor(backend, resources, options);
+  floor_->prepare(recorder_->ops());
+  floor_->replayOnce();
+}
 
-  RecordingBackend recorder(backend);
+double FloorSetup::timeCull() {
+  return secondsOf([&] { (void)strategy_->cull({posesOf(recorded_, frame_), frame_}); });
+}
+
+double FloorSetup::timeFloor() { return secondsOf([&] { floor_->replayOnce(); }); }
+
+FloorComparison compareWithFloor(BackendResources& resources, const std::string& backend,
+                                 const RecordedScene& recorded, const std::string& strategyName,
+                                 int resolution, int frame, int repeats,
+                                 const StrategyRegistry& registry) {
+  repeats = std::max(repeats, 1);
+  FloorSetup setup(resources, backend, recorded, strategyName, resolution, frame, registry);
   FloorComparison c;
-  c.work = recordCullWork(recorder, recorded, strategyName, resolution, frame, registry);
-
-  // The strategy alone, on the bare backend, with the same history.
-  auto strategy = registry.create(strategyName, so);
-  strategy->attach(recorded.scene, backend);
-  (void)strategy->cull({poses, frame});
-  double best = 1e300, sum = 0;
+  c.work = setup.work();
+  c.answersMatch = setup.answersMatch();
+  c.strategyBestSeconds = c.floorBestSeconds = 1e300;
   for (int r = 0; r < repeats; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    (void)strategy->cull({poses, frame});
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    best = std::min(best, s);
-    sum += s;
+    // In turn, so that both sides of a round see the same load on a shared machine.
+    const double cull = setup.timeCull();
+    const double floor = setup.timeFloor();
+    c.answersMatch = c.answersMatch && setup.answersMatch();
+    c.strategyBestSeconds = std::min(c.strategyBestSeconds, cull);
+    c.floorBestSeconds = std::min(c.floorBestSeconds, floor);
+    c.strategyMeanSeconds += cull / repeats;
+    c.floorMeanSeconds += floor / repeats;
   }
-  c.strategyBestSeconds = best;
-  c.strategyMeanSeconds = sum / repeats;
-
-  GlDrawFloor floor(gl, options);
-  const FloorTiming t = floor.replay(recorder.ops(), repeats);
-  c.floorBestSeconds = t.bestSeconds;
-  c.floorMeanSeconds = t.meanSeconds;
-  c.answersMatch = t.answersMatch;
   return c;
 }
 

@@ -1,20 +1,23 @@
 #pragma once
-// A strategy's culling time on one frame against its backend floor: the same draws, queries and
-// fetches replayed as bare GL commands with no algorithm around them (GlDrawFloor). The ratio is
-// the strategy's own overhead on this backend; 1.0 means all of its time is GL work it must issue.
+// A strategy's culling time on one frame against its backend's floor: the same backend work,
+// recorded once and issued again with no algorithm around it (BackendFloor: bare GL commands for
+// gl-queries, the recorded calls replayed for the others). The ratio is the strategy's own
+// overhead on that backend; 1.0 means all of its time is work it must issue.
+#include <memory>
 #include <string>
 
 #include "culling/StrategyRegistry.h"
+#include "culling/visibility/BackendFloor.h"
 #include "culling/visibility/RecordingBackend.h"
 #include "culling/visibility/VisibilityBackend.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/RecordedScene.h"
-#include "render/HeadlessGlContext.h"
 
 namespace cdb {
 
 struct FloorComparison {
-  double strategyBestSeconds = 0, strategyMeanSeconds = 0;  // cull() on the bare GL backend
-  double floorBestSeconds = 0, floorMeanSeconds = 0;        // the recorded GL work replayed
+  double strategyBestSeconds = 0, strategyMeanSeconds = 0;  // cull() on the bare backend
+  double floorBestSeconds = 0, floorMeanSeconds = 0;        // the recorded work replayed
   VisibilityCounters work;  // one cull's queries, draws, triangles, passes, fetches
   bool answersMatch = true;  // the replay answered every query as the strategy's run did
   [[nodiscard]] double ratio() const { return strategyBestSeconds / floorBestSeconds; }
@@ -29,13 +32,44 @@ VisibilityCounters recordCullWork(RecordingBackend& recorder, const RecordedScen
                                   const std::string& strategy, int resolution, int frame,
                                   const StrategyRegistry& registry = StrategyRegistry::builtin());
 
-// Culls `frame` of `recorded` with `strategy` at `resolution`: one untimed cull on a recording
-// backend (after one warm-up cull, so that strategies keeping state across frames record the
-// same work they are timed on), then `repeats` timed culls on the bare backend and `repeats`
-// timed replays of the recording. Throws InputError for an unknown strategy or frame. A strategy
-// that issues no GL work (the CPU peers) has no floor: its ratio is meaningless. `registry`
-// creates the strategy (tests pass one with a deliberately slowed or faulty strategy).
-[[nodiscard]] FloorComparison compareWithFloor(HeadlessGlContext& gl, const RecordedScene& recorded,
+// A strategy on a backend and that backend's floor, ready to be timed in turn: the backend warmed
+// up, the strategy attached with the recorded cull's history (one cull done), the recorded work
+// prepared and replayed once (so its answers were checked and its first-use costs paid).
+class FloorSetup {
+ public:
+  // Throws InputError for an unknown strategy, backend or frame. `registry` creates the strategy
+  // (tests pass one with a deliberately slowed or faulty strategy).
+  FloorSetup(BackendResources& resources, const std::string& backend, const RecordedScene& recorded,
+             const std::string& strategy, int resolution, int frame,
+             const StrategyRegistry& registry = StrategyRegistry::builtin());
+
+  // One cull of the frame on the bare backend, in seconds.
+  double timeCull();
+  // One replay of the recorded work, in seconds.
+  double timeFloor();
+  // Whether the latest replay answered as the strategy's run did.
+  [[nodiscard]] bool answersMatch() const { return floor_->answersMatch(); }
+  // The recorded cull's work; no queries and no draws for a strategy that draws nothing (the CPU
+  // peers): it has no floor.
+  [[nodiscard]] const VisibilityCounters& work() const { return work_; }
+  [[nodiscard]] BackendFloor& floor() { return *floor_; }
+
+ private:
+  const RecordedScene& recorded_;
+  int frame_;
+  std::unique_ptr<VisibilityBackend> backend_;
+  std::unique_ptr<RecordingBackend> recorder_;
+  std::unique_ptr<CullingStrategy> strategy_;
+  std::unique_ptr<BackendFloor> floor_;
+  VisibilityCounters work_;
+};
+
+// Culls `frame` of `recorded` with `strategy` at `resolution` on `backend` and replays its
+// recorded work, `repeats` times each in turn (a cull, then a replay, so both see the same load).
+// Throws InputError for an unknown strategy, backend or frame. A strategy that issues no backend
+// work (the CPU peers) has no floor: its ratio is meaningless.
+[[nodiscard]] FloorComparison compareWithFloor(BackendResources& resources, const std::string& backend,
+                                               const RecordedScene& recorded,
                                                const std::string& strategy, int resolution,
                                                int frame, int repeats = 3,
                                                const StrategyRegistry& registry = StrategyRegistry::builtin());

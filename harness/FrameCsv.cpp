@@ -11,21 +11,22 @@ namespace cdb {
 
 namespace {
 constexpr const char* kHeader =
-    "environment,strategy,resolution,objects,repeat,frame,cd_ms,cull_ms,exact_ms,pcs_size,sets,"
-    "pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,false_negatives,"
-    "false_positives,culling_misses,queries,draws,triangles_drawn";
-constexpr int kColumns = 22;
+    "environment,strategy,visibility,resolution,objects,repeat,frame,cd_ms,cull_ms,exact_ms,pcs_size,"
+    "sets,pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,false_negatives,"
+    "false_positives,culling_misses,queries,draws,triangles_drawn,pixels_tested,pixels_written";
+constexpr int kColumns = 25;
 }  // namespace
 
 void writeFrameCsvHeader(std::ostream& out) { out << kHeader << '\n'; }
 
 void writeFrameCsvRow(std::ostream& out, const FrameRecord& r) {
-  out << r.environment << ',' << r.strategy << ',' << r.resolution << ',' << r.objects << ','
+  out << r.environment << ',' << r.strategy << ',' << r.visibility << ',' << r.resolution << ',' << r.objects << ','
       << r.repeat << ',' << r.frame << ',' << r.cdMs << ',' << r.cullMs << ',' << r.exactMs << ','
       << r.pcsSize << ',' << r.sets << ',' << r.pcsTriangles << ',' << r.pairsTested << ','
       << r.triangleTests << ',' << r.collidingPairs << ',' << r.truthPairs << ','
       << r.falseNegatives << ',' << r.falsePositives << ',' << r.cullingMisses << ','
-      << r.queries << ',' << r.draws << ',' << r.trianglesDrawn << '\n';
+      << r.queries << ',' << r.draws << ',' << r.trianglesDrawn << ',' << r.pixelsTested << ','
+      << r.pixelsWritten << '\n';
 }
 
 std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file) {
@@ -51,6 +52,7 @@ std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file) {
       std::size_t i = 0;
       r.environment = f[i++];
       r.strategy = f[i++];
+      r.visibility = f[i++];
       r.resolution = std::stoi(f[i++]);
       r.objects = std::stoi(f[i++]);
       r.repeat = std::stoi(f[i++]);
@@ -61,7 +63,8 @@ std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file) {
       for (std::uint64_t* v : {&r.pcsSize, &r.sets, &r.pcsTriangles, &r.pairsTested,
                                &r.triangleTests, &r.collidingPairs, &r.truthPairs,
                                &r.falseNegatives, &r.falsePositives, &r.cullingMisses,
-                               &r.queries, &r.draws, &r.trianglesDrawn})
+                               &r.queries, &r.draws, &r.trianglesDrawn, &r.pixelsTested,
+                               &r.pixelsWritten})
         *v = std::stoull(f[i++]);
       rows.push_back(std::move(r));
     } catch (const std::logic_error&) {

@@ -8,6 +8,7 @@ namespace cdb {
 struct FrameRecord {
   std::string environment;
   std::string strategy;
+  std::string visibility;  // the visibility backend that answered the strategy's tests
   int resolution = 0;
   int objects = 0;  // moving bodies (the thesis' "number of objects")
   int repeat = 0;
@@ -28,6 +29,8 @@ struct FrameRecord {
   std::uint64_t queries = 0;
   std::uint64_t draws = 0;
   std::uint64_t trianglesDrawn = 0;
+  std::uint64_t pixelsTested = 0;   // rasterised by the backend itself (0 where it does not count)
+  std::uint64_t pixelsWritten = 0;
 };
 
 }  // namespace cdb

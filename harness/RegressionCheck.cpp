@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/Errors.h"
 #include "harness/CheckBaseline.h"
 #include "harness/CheckScenes.h"
 #include "harness/MachineInfo.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "render/HeadlessGlContext.h"
 
 #ifndef CDBENCH_SOURCE_DIR
@@ -42,24 +44,37 @@ void reportStep(const CheckOptions& options, CheckClock::time_point start, const
 }
 
 std::string describeBaseline(const CheckBaseline& b) {
+  std::string renderers;
+  for (const auto& [backend, renderer] : b.renderers)
+    renderers += (renderers.empty() ? "" : ", ") + backend + " on " + renderer;
   return b.createdUtc + " on " + b.machine.value("cpu", std::string("?")) + " (" +
-         std::to_string(b.machine.value("logical_cores", 0)) + " cores), " + b.glRenderer + ", " +
+         std::to_string(b.machine.value("logical_cores", 0)) + " cores), " + renderers + ", " +
          b.buildType + " build";
 }
 
 // Compares every measured ratio with the baseline's, or marks why it is not compared.
 void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const MachineInfo& machine) {
-  std::string skipWhy;
-  if (baseline.glRenderer != report.glRenderer)
-    skipWhy = "the baseline was measured on the renderer '" + baseline.glRenderer + "', this run on '" +
-              report.glRenderer + "'";
-  else if (baseline.buildType != machine.buildType)
-    skipWhy = "the baseline was measured in a " + baseline.buildType + " build, this is a " +
-              machine.buildType + " build";
-  if (!skipWhy.empty()) {
-    report.notes.push_back("timing not compared: " + skipWhy +
-                           "; ratios of different renderers or builds are not comparable "
-                           "(record a baseline for this one with --update-baseline)");
+  // Why a backend's ratios are not compared, per backend ("" = compared).
+  std::map<std::string, std::string> skipWhy;
+  for (const auto& [backend, renderer] : report.renderers) {
+    std::string& why = skipWhy[backend];
+    const auto it = baseline.renderers.find(backend);
+    if (it == baseline.renderers.end())
+      why = "the baseline has no ratios of the " + backend + " backend";
+    else if (it->second != renderer)
+      why = "the baseline's " + backend + " ratios were measured on '" + it->second +
+            "', this run's on '" + renderer + "'";
+    else if (baseline.buildType != machine.buildType)
+      why = "the baseline was measured in a " + baseline.buildType + " build, this is a " +
+            machine.buildType + " build";
+    if (!why.empty())
+      report.notes.push_back(backend + " timing not compared: " + why +
+                             "; ratios of different renderers or builds are not comparable "
+                             "(record a baseline for this one with --update-baseline)");
+  }
+  const bool anyCompared = std::any_of(skipWhy.begin(), skipWhy.end(),
+                                       [](const auto& kv) { return kv.second.empty(); });
+  if (!anyCompared) {
   } else if (baseline.machine.value("cpu", std::string()) != machine.cpuModel ||
              baseline.machine.value("logical_cores", 0u) != machine.logicalCores) {
     report.notes.push_back("the baseline was measured on another CPU (" + describeBaseline(baseline) +
@@ -74,7 +89,7 @@ void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const Mach
       continue;
     }
     row.baseline = it->second.value;
-    if (!skipWhy.empty()) {
+    if (!skipWhy[row.measured.backend].empty()) {
       row.status = RatioStatus::NotCompared;
       continue;
     }
@@ -110,32 +125,47 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
   const std::vector<std::string> strategies = plan.strategies.empty() ? registry.names() : plan.strategies;
   registry.validate(strategies);
 
-  HeadlessGlContext gl(parseGlPlatform(options.glPlatform));
-  report.glRenderer = gl.info().glRenderer;
+  const auto& backendRegistry = VisibilityBackendRegistry::builtin();
+  BackendResources resources(parseGlPlatform(options.glPlatform));
+  std::vector<std::string> backends = options.backends;
+  if (backends.empty()) {
+    std::vector<std::string> why;
+    backends = backendRegistry.available(resources, &why);
+    for (const auto& w : why) report.notes.push_back("backend not checked, it does not start here: " + w);
+    if (backends.empty()) throw RunError("no visibility backend starts here");
+  }
+  for (const auto& b : backends) {
+    backendRegistry.validate(b);
+    report.renderers[b] = backendRegistry.create(b, resources, {})->renderer();
+  }
   CheckScenes scenes(options.configDir, options.assetDirs);
 
-  for (const auto& c : plan.correctness) {
-    reportStep(options, start, "correctness on " + c.scene.label());
-    auto rows = checkCorrectness(gl, scenes, {c}, strategies, registry);
-    report.correctness.insert(report.correctness.end(), rows.begin(), rows.end());
-  }
+  for (const auto& c : plan.correctness)
+    for (std::size_t k = 0; k < backends.size(); ++k) {
+      reportStep(options, start, backends[k] + ": correctness on " + c.scene.label());
+      // The CPU peers use no backend: checked once, with the first.
+      auto rows = checkCorrectness(resources, backends[k], k == 0, scenes, {c}, strategies, registry);
+      report.correctness.insert(report.correctness.end(), rows.begin(), rows.end());
+    }
   std::vector<RatioMeasurement> ratios;
-  for (const auto& c : plan.speedups) {
-    reportStep(options, start, "timing " + c.key());
-    auto m = measureSpeedups(gl, scenes, {c}, registry);
-    ratios.insert(ratios.end(), m.begin(), m.end());
-  }
   std::vector<std::string> withoutFloor;
-  for (const auto& c : plan.floors) {
-    reportStep(options, start, "timing each strategy against its floor on " + c.scene.label());
-    auto m = measureFloors(gl, scenes, {c}, strategies, registry, withoutFloor);
-    ratios.insert(ratios.end(), m.begin(), m.end());
+  for (const auto& backend : backends) {
+    for (const auto& c : plan.speedups) {
+      reportStep(options, start, backend + ": timing " + c.key());
+      auto m = measureSpeedups(resources, backend, scenes, {c}, registry);
+      ratios.insert(ratios.end(), m.begin(), m.end());
+    }
+    for (const auto& c : plan.floors) {
+      reportStep(options, start, backend + ": timing each strategy against its floor on " + c.scene.label());
+      auto m = measureFloors(resources, backend, scenes, {c}, strategies, registry, withoutFloor);
+      ratios.insert(ratios.end(), m.begin(), m.end());
+    }
   }
   for (auto& m : ratios) report.timing.push_back({std::move(m), std::nullopt, std::nullopt, RatioStatus::New});
   if (!withoutFloor.empty()) {
     std::string names;
     for (const auto& n : withoutFloor) names += (names.empty() ? "" : ", ") + n;
-    report.notes.push_back(names + ": no GL work, so no backend floor to compare with");
+    report.notes.push_back(names + ": no backend work, so no backend floor to compare with");
   }
 
   const MachineInfo machine = probeMachine();
@@ -146,10 +176,10 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
   } else {
     CheckBaseline b;
     b.createdUtc = utcTimestamp();
-    b.glRenderer = report.glRenderer;
+    b.renderers = report.renderers;
     b.buildType = machine.buildType;
     b.machine = toJson(machine);
-    b.gl = toJson(gl.info());
+    if (const HeadlessGlContext* gl = resources.openedGl()) b.gl = toJson(gl->info());
     b.commandLine = options.commandLine;
     for (auto& row : report.timing) {
       b.ratios[row.measured.key] = row.measured;
@@ -179,17 +209,19 @@ const char* ratioStatusText(RatioStatus s) {
 }  // namespace
 
 void printCheckReport(const CheckReport& r, std::FILE* out) {
-  std::fprintf(out, "GL renderer: %s\n", r.glRenderer.c_str());
+  for (const auto& [backend, renderer] : r.renderers)
+    std::fprintf(out, "backend:     %s on %s\n", backend.c_str(), renderer.c_str());
   std::fprintf(out, "baseline:    %s%s (%s)\n", r.baselineFile.c_str(),
                r.baselineWritten ? " written" : "", r.baselineDescription.c_str());
 
   std::fprintf(out, "\ncorrectness: each strategy's colliding pairs against the ground truth's\n");
-  std::fprintf(out, "%-18s %5s  %-12s %4s %6s %6s %6s %6s %6s  %s\n", "scene", "frame", "strategy",
-               "res", "truth", "found", "missed", "extra", "split", "result");
+  std::fprintf(out, "%-10s %-18s %5s  %-13s %4s %6s %6s %6s %6s %6s  %s\n", "backend", "scene",
+               "frame", "strategy", "res", "truth", "found", "missed", "extra", "split", "result");
   for (const auto& c : r.correctness) {
     const std::string res = c.resolution > 0 ? std::to_string(c.resolution) : "-";
-    std::fprintf(out, "%-18s %5d  %-12s %4s %6zu %6zu %6llu %6llu %6llu  %s\n", c.scene.c_str(),
-                 c.frame, c.strategy.c_str(), res.c_str(), c.truthPairs, c.foundPairs,
+    std::fprintf(out, "%-10s %-18s %5d  %-13s %4s %6zu %6zu %6llu %6llu %6llu  %s\n",
+                 c.backend.c_str(), c.scene.c_str(), c.frame, c.strategy.c_str(), res.c_str(),
+                 c.truthPairs, c.foundPairs,
                  static_cast<unsigned long long>(c.comparison.falseNegatives),
                  static_cast<unsigned long long>(c.comparison.falsePositives),
                  static_cast<unsigned long long>(c.comparison.cullingMisses),
@@ -197,12 +229,13 @@ void printCheckReport(const CheckReport& r, std::FILE* out) {
   }
   std::fprintf(out,
                "  missed: truth pairs not found; extra: pairs found that the truth lacks; split: truth\n"
-               "  pairs pruned or split across sets before the exact phase; res -: a CPU peer (no image)\n");
+               "  pairs pruned or split across sets before the exact phase; res -, backend -: a CPU peer (no\n"
+               "  image, run once)\n");
 
   std::fprintf(out,
                "\ntiming: culling-time ratios measured in this process on the same frames, each the\n"
                "median of its rounds' ratios (ms: the times of that round)\n");
-  std::fprintf(out, "%-52s %9s %19s %9s %10s  %s\n", "ratio", "measured", "(ms / ms)", "baseline",
+  std::fprintf(out, "%-64s %9s %19s %9s %10s  %s\n", "ratio", "measured", "(ms / ms)", "baseline",
                "allowed", "result");
   for (const auto& t : r.timing) {
     char times[40], base[24] = "-", allowed[24] = "-";
@@ -211,7 +244,7 @@ void printCheckReport(const CheckReport& r, std::FILE* out) {
     if (t.allowed)
       std::snprintf(allowed, sizeof allowed, "%s %.3f",
                     t.measured.kind == RatioKind::Speedup ? ">=" : "<=", *t.allowed);
-    std::fprintf(out, "%-52s %9.3f %19s %9s %10s  %s\n", t.measured.key.c_str(), t.measured.value,
+    std::fprintf(out, "%-64s %9.3f %19s %9s %10s  %s\n", t.measured.key.c_str(), t.measured.value,
                  times, base, allowed, ratioStatusText(t.status));
   }
   std::fprintf(out,

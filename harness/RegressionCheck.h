@@ -15,6 +15,8 @@
 #include "harness/CheckPlan.h"
 #include "harness/CheckTiming.h"
 
+#include <map>
+
 namespace cdb {
 
 // <repo>/results/baseline.json and <repo>/configs of the source tree this binary was built from.
@@ -27,6 +29,9 @@ struct CheckOptions {
   // (refused when the correctness part fails).
   bool updateBaseline = false;
   std::string glPlatform = "auto";
+  // Visibility backends to check (correctness and timing on each); empty: every registered
+  // backend that starts here.
+  std::vector<std::string> backends;
   std::vector<std::string> assetDirs;  // as --assets
   std::filesystem::path configDir = defaultConfigDir();
   std::vector<std::string> commandLine;  // recorded in a written baseline
@@ -49,7 +54,7 @@ struct TimingRow {
 };
 
 struct CheckReport {
-  std::string glRenderer;
+  std::map<std::string, std::string> renderers;  // per checked backend, what rendered
   std::filesystem::path baselineFile;
   std::string baselineDescription;  // when and where the baseline was measured
   std::vector<CorrectnessRow> correctness;

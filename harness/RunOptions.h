@@ -18,6 +18,8 @@ struct RunOptions {
   std::optional<int> repeats;
   std::optional<std::uint64_t> seed;
   std::optional<bool> conservative;  // --raw sets false
+  std::optional<std::string> visibility;  // --visibility: backend name (cdbench backends)
+  std::optional<int> threads;             // --threads: CPU backends' worker threads, 0 = all
   std::filesystem::path outDir = "results/latest";
   std::vector<std::string> assetDirs;  // --assets, before CDBENCH_ASSETS
   std::string glPlatform = "auto";

@@ -19,11 +19,15 @@ void writeRunOutputs(const std::filesystem::path& dir, const std::vector<FrameRe
   writeCdTimeTablesCsv(dir / "tables.csv", cells);
   std::string environment = rows.empty() ? std::string() : rows.front().environment;
   std::string renderer;
+  if (meta.contains("visibility"))
+    renderer = "visibility backend: " + meta["visibility"].value("backend", std::string("?")) + " (" +
+               meta["visibility"].value("renderer", std::string()) + ")";
   if (meta.contains("gl") && meta["gl"].contains("renderer"))
-    renderer = meta["gl"]["renderer"].get<std::string>() + " (" +
-               meta["gl"].value("version", std::string()) + ")";
-  writeFileAtomically(dir / "tables.md", "# CD time tables: " + environment + "\n\nGL renderer: " +
-                                             renderer + "\n\n" + cdTimeTablesMarkdown(cells));
+    renderer += (renderer.empty() ? "" : "; ") + std::string("GL renderer: ") +
+                meta["gl"]["renderer"].get<std::string>() + " (" +
+                meta["gl"].value("version", std::string()) + ")";
+  writeFileAtomically(dir / "tables.md", "# CD time tables: " + environment + "\n\n" + renderer +
+                                             "\n\n" + cdTimeTablesMarkdown(cells));
   writeFileAtomically(dir / "meta.json", meta.dump(2) + "\n");
 }
 

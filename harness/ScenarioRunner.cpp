@@ -12,10 +12,11 @@
 #include "culling/StrategyRegistry.h"
 #include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
-#include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/AtomicFile.h"
 #include "harness/BackendWarmUp.h"
 #include "harness/CellStore.h"
+#include "harness/FrameDetection.h"
 #include "harness/InterruptFlag.h"
 #include "harness/ProgressBar.h"
 #include "harness/RunOutputs.h"
@@ -67,6 +68,17 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
   if (options.repeats) config.sweep.repeats = *options.repeats;
   if (options.seed) config.seed = *options.seed;
   if (options.conservative) config.culling.conservative = *options.conservative;
+  if (options.visibility) config.culling.visibility = *options.visibility;
+  if (options.threads) config.culling.threads = *options.threads;
+  config.culling.visibility = backendNameOf(config.culling);
+  try {
+    VisibilityBackendRegistry::builtin().validate(config.culling.visibility);
+  } catch (const InputError& e) {
+    if (options.visibility) throw InputError(std::string("--visibility: ") + e.what());
+    throw InputError(options.configPath.string() + ": culling.visibility: " + e.what());
+  }
+  if (config.culling.threads < 0 || config.culling.threads > 1024)
+    throw InputError("--threads " + std::to_string(config.culling.threads) + ": expected 0..1024 (0 = every core)");
 
   try {
     StrategyRegistry::builtin().validate(config.sweep.strategies);
@@ -101,6 +113,10 @@ std::uint64_t identityHash(const ScenarioConfig& config, const RunOptions& optio
   h.u64(config.seed);
   h.byte(config.culling.conservative ? 1 : 0);
   h.f64(config.culling.rawDepthOffset);
+  // Answers do not depend on the backend or its threads, but the times do: cells of another
+  // backend are another measurement.
+  h.text(config.culling.visibility);
+  h.i64(config.culling.threads);
   h.byte(options.groundTruth ? 1 : 0);
   h.text(options.replayFile ? options.replayFile->string() : std::string());
   h.i64(options.frameStride);
@@ -152,12 +168,15 @@ RunSummary runScenario(const RunOptions& options) {
   for (const auto& c : plan) identity.plan.push_back(c.key());
 
 
-  HeadlessGlContext gl(parseGlPlatform(options.glPlatform));
-  GlOcclusionQueryBackend backend(gl, {config.culling.conservative, config.culling.rawDepthOffset});
+  BackendResources resources(parseGlPlatform(options.glPlatform));
+  const std::unique_ptr<VisibilityBackend> backendOwner = VisibilityBackendRegistry::builtin().create(
+      config.culling.visibility, resources, visibilityOptionsOf(config.culling));
+  VisibilityBackend& backend = *backendOwner;
   for (int r : config.sweep.resolutions)
     if (r > backend.maxResolution())
-      throw InputError("resolution " + std::to_string(r) + ": above the largest framebuffer this GL renders (" +
-                       std::to_string(backend.maxResolution()) + " pixels, " + gl.info().glRenderer + ")");
+      throw InputError("resolution " + std::to_string(r) + ": above the largest framebuffer the " +
+                       config.culling.visibility + " backend renders (" +
+                       std::to_string(backend.maxResolution()) + " pixels, " + backend.renderer() + ")");
   const CellStore store(options.outDir, identity);
   RunSummary summary;
   WallTimeBreakdown& time = summary.time;
@@ -239,25 +258,22 @@ RunSummary runScenario(const RunOptions& options) {
     std::vector<FrameRecord> rows;
     for (std::uint32_t f : measured) {
       const auto poses = recording.frame(f);
-      const auto t0 = Clock::now();
-      CullingResult culled = strategy->cull({poses, static_cast<int>(f)});
-      const auto t1 = Clock::now();
-      const bool decidedByStrategy = culled.decided.has_value();
-      const CollisionReport report =
-          decidedByStrategy ? std::move(*culled.decided) : exact->run(poses, culled.sets);
-      const auto t2 = Clock::now();
-      time.cdSeconds += msSince(t0, t2) / 1e3;
+      const DetectedFrame detected = detectFrame(*strategy, *exact, poses, static_cast<int>(f));
+      const CullingResult& culled = detected.culled;
+      const CollisionReport& report = detected.report;
+      time.cdSeconds += detected.cdMs() / 1e3;
 
       FrameRecord r;
       r.environment = cfg->environment;
       r.strategy = cell.strategy;
+      r.visibility = config.culling.visibility;
       r.resolution = cell.resolution;
       r.objects = objects;
       r.repeat = cell.repeat;
       r.frame = static_cast<int>(f);
-      r.cullMs = msSince(t0, t1);
-      r.exactMs = msSince(t1, t2);
-      r.cdMs = msSince(t0, t2);
+      r.cullMs = detected.cullMs;
+      r.exactMs = detected.exactMs;
+      r.cdMs = detected.cdMs();
       r.pcsSize = culled.counters.pcsSize;
       r.sets = culled.counters.sets;
       r.pcsTriangles = culled.counters.pcsTriangles;
@@ -267,6 +283,8 @@ RunSummary runScenario(const RunOptions& options) {
       r.queries = culled.counters.visibility.queries;
       r.draws = culled.counters.visibility.draws;
       r.trianglesDrawn = culled.counters.visibility.trianglesDrawn;
+      r.pixelsTested = culled.counters.visibility.pixelsTested;
+      r.pixelsWritten = culled.counters.visibility.pixelsWritten;
       if (truth) {
         const ScopedSeconds timed(time.truthSeconds);
         const auto cmp =
@@ -297,7 +315,13 @@ RunSummary runScenario(const RunOptions& options) {
   shardMeta["created_utc"] = utcTimestamp();
   shardMeta["command_line"] = options.commandLine;
   shardMeta["machine"] = toJson(probeMachine());
-  shardMeta["gl"] = toJson(gl.info());
+  shardMeta["visibility"] = {{"backend", config.culling.visibility},
+                             {"description", VisibilityBackendRegistry::builtin().description(
+                                                  config.culling.visibility)},
+                             {"renderer", backend.renderer()},
+                             {"threads", config.culling.threads}};
+  // GL is opened only by backends that need it; a run on the CPU backend records none.
+  if (const HeadlessGlContext* gl = resources.openedGl()) shardMeta["gl"] = toJson(gl->info());
   shardMeta["wall_time"] = time.toJson();
   writeFileAtomically(options.outDir /
                           ("shard-" + std::to_string(shard.index) + "-of-" +
@@ -313,7 +337,8 @@ RunSummary runScenario(const RunOptions& options) {
   meta["created_utc"] = utcTimestamp();
   meta["command_line"] = options.commandLine;
   meta["machine"] = shardMeta["machine"];
-  meta["gl"] = shardMeta["gl"];
+  meta["visibility"] = shardMeta["visibility"];
+  if (shardMeta.contains("gl")) meta["gl"] = shardMeta["gl"];
   meta["shards"] = nlohmann::json::array({shardMeta});
   meta["config"] = {{"path", options.configPath.string()},
                     {"environment", config.environment},
@@ -325,6 +350,8 @@ RunSummary runScenario(const RunOptions& options) {
                     {"object_counts", config.sweep.objectCounts},
                     {"strategies", config.sweep.strategies},
                     {"conservative", config.culling.conservative},
+                    {"visibility", config.culling.visibility},
+                    {"threads", config.culling.threads},
                     {"ground_truth", options.groundTruth},
                     {"text", configText}};
   std::uint64_t fn = 0, fp = 0, truthPairsTotal = 0;

@@ -9,6 +9,7 @@
 
 #include "core/Errors.h"
 #include "culling/StrategyRegistry.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/MergeRuns.h"
 #include "harness/RegressionCheck.h"
 #include "harness/RunOptions.h"
@@ -18,16 +19,49 @@
 
 namespace {
 
+// The GL platform (when one opens) and every visibility backend, with whether it starts here.
+// Exit 0 when at least one backend works.
 int printInfo(const std::string& platform) {
-  cdb::HeadlessGlContext gl(cdb::parseGlPlatform(platform));
-  const auto& i = gl.info();
-  std::printf("platform:     %s\n", i.platform.c_str());
-  std::printf("EGL vendor:   %s\n", i.eglVendor.c_str());
-  std::printf("EGL version:  %s\n", i.eglVersion.c_str());
-  std::printf("GL vendor:    %s\n", i.glVendor.c_str());
-  std::printf("GL renderer:  %s\n", i.glRenderer.c_str());
-  std::printf("GL version:   %s\n", i.glVersion.c_str());
-  return 0;
+  cdb::BackendResources resources(cdb::parseGlPlatform(platform));
+  try {
+    const auto& i = resources.gl().info();
+    std::printf("platform:     %s\n", i.platform.c_str());
+    std::printf("EGL vendor:   %s\n", i.eglVendor.c_str());
+    std::printf("EGL version:  %s\n", i.eglVersion.c_str());
+    std::printf("GL vendor:    %s\n", i.glVendor.c_str());
+    std::printf("GL renderer:  %s\n", i.glRenderer.c_str());
+    std::printf("GL version:   %s\n", i.glVersion.c_str());
+  } catch (const cdb::RunError& e) {
+    std::printf("GL:           not available (%s)\n", e.what());
+  }
+  const auto& registry = cdb::VisibilityBackendRegistry::builtin();
+  std::printf("\nvisibility backends (default %s):\n", std::string(registry.kDefault).c_str());
+  int working = 0;
+  for (const auto& name : registry.names()) {
+    try {
+      const auto backend = registry.create(name, resources, {});
+      std::printf("  %-12s works: %s\n", name.c_str(), backend->renderer().c_str());
+      ++working;
+    } catch (const cdb::RunError& e) {
+      std::printf("  %-12s unavailable: %s\n", name.c_str(), e.what());
+    }
+  }
+  return working > 0 ? 0 : 1;
+}
+
+// "a, b,c" -> {a, b, c}.
+std::vector<std::string> splitNames(const std::string& list) {
+  std::vector<std::string> names;
+  std::string cur;
+  for (char c : list + ",") {
+    if (c == ',') {
+      if (!cur.empty()) names.push_back(cur);
+      cur.clear();
+    } else if (c != ' ') {
+      cur += c;
+    }
+  }
+  return names;
 }
 
 }  // namespace
@@ -37,10 +71,12 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::string glPlatform = "auto";
 
-  auto* info = app.add_subcommand("info", "print the EGL/OpenGL platform, vendor, renderer, version");
+  auto* info = app.add_subcommand(
+      "info", "print the EGL/OpenGL platform, vendor, renderer, version and the visibility backends that work here");
   info->add_option("--gl", glPlatform, "auto | device | surfaceless")->capture_default_str();
 
   auto* list = app.add_subcommand("strategies", "list the culling strategies");
+  auto* backends = app.add_subcommand("backends", "list the visibility backends");
 
   cdb::RunOptions run;
   std::string strategies, resolutions, objects;
@@ -63,6 +99,13 @@ int main(int argc, char** argv) {
   runCmd->add_option("--gl", run.glPlatform, "auto | device | surfaceless")->capture_default_str();
   runCmd->add_option("--record", record, "write the simulated poses to FILE");
   runCmd->add_option("--replay", replay, "replay poses from FILE instead of simulating");
+  std::string visibility;
+  int threads = -1;
+  runCmd->add_option("--visibility", visibility,
+                     "visibility backend (cdbench backends; default: the config's culling.visibility, else " +
+                         std::string(cdb::VisibilityBackendRegistry::kDefault) + ")");
+  auto* threadsOpt = runCmd->add_option("--threads", threads,
+                                        "worker threads of a CPU visibility backend (0 = every core)");
   runCmd->add_flag("--raw", raw, "raw rasterisation (no conservative widening): may miss contacts");
   runCmd->add_flag("--no-truth", noTruth, "skip the ground truth");
   runCmd->add_flag("--quiet", run.quiet, "no progress on stderr");
@@ -82,6 +125,9 @@ int main(int argc, char** argv) {
   checkCmd->add_flag("--update-baseline", check.updateBaseline,
                      "write the baseline from this run's ratios instead of comparing with it");
   checkCmd->add_option("--gl", check.glPlatform, "auto | device | surfaceless")->capture_default_str();
+  std::string checkBackends;
+  checkCmd->add_option("--visibility", checkBackends,
+                       "comma-separated visibility backends to check (default: every one that starts here)");
   checkCmd->add_option("--assets", check.assetDirs, "asset folder (repeatable), before $CDBENCH_ASSETS");
 
   try {
@@ -97,6 +143,14 @@ int main(int argc, char** argv) {
 
   try {
     if (*info) return printInfo(glPlatform);
+    if (*backends) {
+      const auto& registry = cdb::VisibilityBackendRegistry::builtin();
+      for (const auto& name : registry.names())
+        std::printf("%-12s %s%s%s\n", name.c_str(), registry.description(name).c_str(),
+                    registry.traits(name).needsGl ? " [needs EGL/OpenGL]" : "",
+                    name == registry.kDefault ? " [default]" : "");
+      return 0;
+    }
     if (*list) {
       for (const auto& name : cdb::StrategyRegistry::builtin().names())
         std::printf("%-12s %s\n", name.c_str(), cdb::StrategyRegistry::builtin().description(name).c_str());
@@ -104,6 +158,7 @@ int main(int argc, char** argv) {
     }
     if (*checkCmd) {
       for (int i = 0; i < argc; ++i) check.commandLine.emplace_back(argv[i]);
+      check.backends = splitNames(checkBackends);
       check.progress = stderr;
       const auto report = cdb::runRegressionCheck(check);
       cdb::printCheckReport(report, stdout);
@@ -115,25 +170,15 @@ int main(int argc, char** argv) {
                    merged.frameRows, mergeOut.c_str());
       return 0;
     }
-    if (!strategies.empty()) {
-      std::vector<std::string> names;
-      std::string cur;
-      for (char c : strategies + ",") {
-        if (c == ',') {
-          if (!cur.empty()) names.push_back(cur);
-          cur.clear();
-        } else if (c != ' ') {
-          cur += c;
-        }
-      }
-      run.strategies = names;
-    }
+    if (!strategies.empty()) run.strategies = splitNames(strategies);
     if (!resolutions.empty()) run.resolutions = cdb::parseIntList(resolutions);
     if (!objects.empty()) run.objectCounts = cdb::parseIntList(objects);
     if (*framesOpt) run.frames = frames;
     if (*repeatsOpt) run.repeats = repeats;
     if (*seedOpt) run.seed = seed;
     if (raw) run.conservative = false;
+    if (!visibility.empty()) run.visibility = visibility;
+    if (*threadsOpt) run.threads = threads;
     run.groundTruth = !noTruth;
     if (!record.empty()) run.recordFile = record;
     if (!replay.empty()) run.replayFile = replay;

@@ -201,7 +201,10 @@ SweepSpec readSweep(const ConfigNode& node) {
 CullingSpec readCulling(const ConfigNode& node) {
   CullingSpec c;
   if (!node.present()) return c;
-  node.expectKeys({"conservative", "raw_depth_offset", "leaf_triangles", "bvh_offset"});
+  node.expectKeys({"conservative", "raw_depth_offset", "leaf_triangles", "bvh_offset", "visibility",
+                   "threads"});
+  if (auto n = node["visibility"]; n.present()) c.visibility = n.string();
+  if (auto n = node["threads"]; n.present()) c.threads = int(n.integer(L::kThreads));
   if (auto n = node["conservative"]; n.present()) c.conservative = n.boolean();
   if (auto n = node["raw_depth_offset"]; n.present()) c.rawDepthOffset = n.number(L::kDepthOffset);
   if (auto n = node["leaf_triangles"]; n.present())

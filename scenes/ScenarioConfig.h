@@ -96,6 +96,10 @@ struct CullingSpec {
   double rawDepthOffset = 1e-5;   // the raw mode's small depth offset, in NDC depth units
   int leafTriangles = 8;          // BVH leaf size (strategies with a hierarchy)
   double bvhOffset = 1e-3;        // OBB enlargement, as a fraction of the mesh's size
+  // Visibility backend by registry name; empty = the harness' default
+  // (VisibilityBackendRegistry::kDefault). Checked against the registry by the harness.
+  std::string visibility;
+  int threads = 0;                // worker threads of CPU backends (0 = every core)
 };
 
 struct ScenarioConfig {

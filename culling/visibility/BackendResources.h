@@ -2,6 +2,7 @@
 // What visibility backends may share in one process: the headless GL context, opened on first
 // use with the platform the run asked for, so that a run on a backend that needs no GL (the CPU
 // rasteriser) never touches EGL.
+#include <functional>
 #include <memory>
 
 #include "render/HeadlessGlContext.h"
@@ -12,8 +13,9 @@ class BackendResources {
  public:
   // GL is opened on the first gl() with `platform`.
   explicit BackendResources(GlPlatform platform = GlPlatform::Auto) : platform_(platform) {}
-  // GL is `borrowed`, which must outlive this (tests share one context).
-  explicit BackendResources(HeadlessGlContext& borrowed) : borrowed_(&borrowed) {}
+  // GL is the context `borrow` returns on the first gl(), which must outlive this (tests share
+  // one context).
+  explicit BackendResources(std::function<HeadlessGlContext&()> borrow) : borrow_(std::move(borrow)) {}
   BackendResources(const BackendResources&) = delete;
   BackendResources& operator=(const BackendResources&) = delete;
 
@@ -26,6 +28,7 @@ class BackendResources {
 
  private:
   GlPlatform platform_ = GlPlatform::Auto;
+  std::function<HeadlessGlContext&()> borrow_;
   HeadlessGlContext* borrowed_ = nullptr;
   std::unique_ptr<HeadlessGlContext> owned_;
 };

@@ -3,8 +3,11 @@
 // (RecordingBackend) is lowered once to plain draw commands, with every look-up, check, pass
 // set-up and box matrix done beforehand, and then replayed on a GlVisibilityPipeline and timed.
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
+
+#include "culling/visibility/BackendFloor.h"
 
 #include "culling/visibility/GlVisibilityPipeline.h"
 #include "culling/visibility/RecordingBackend.h"
@@ -67,6 +70,20 @@ class GlDrawFloor {
   VisibilityOptions options_;
   const SceneGeometry* attached_ = nullptr;  // the scene resident in pipeline_
   std::vector<std::uint8_t> leftover_;
+};
+
+// The floor of the GL occlusion-query backend (gl-queries) as a BackendFloor.
+class GlQueryFloor final : public BackendFloor {
+ public:
+  explicit GlQueryFloor(HeadlessGlContext& context, const VisibilityOptions& options = {})
+      : floor_(context, options) {}
+  void prepare(std::span<const RecordedOp> ops) override { prepared_.emplace(floor_.prepare(ops)); }
+  void replayOnce() override { floor_.replayOnce(*prepared_); }
+  [[nodiscard]] bool answersMatch() const override { return prepared_->answersMatch(); }
+
+ private:
+  GlDrawFloor floor_;
+  std::optional<GlDrawFloor::Prepared> prepared_;
 };
 
 }  // namespace cdb

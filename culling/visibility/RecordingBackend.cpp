@@ -102,8 +102,13 @@ void RecordingBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
 }
 
 void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops,
-               std::vector<std::vector<std::uint8_t>>* fetched) {
-  std::vector<std::uint8_t> answers;
+               std::vector<std::vector<std::uint8_t>>* answers) {
+  std::vector<std::uint8_t> discarded;
+  std::size_t fetches = 0;
+  if (answers)
+    for (const RecordedOp& op : ops) fetches += op.kind == RecordedOp::Kind::FetchResults ? 1 : 0;
+  if (answers) answers->resize(fetches);
+  std::size_t fetch = 0;
   for (const RecordedOp& op : ops) {
     switch (op.kind) {
       case RecordedOp::Kind::SetOptions:
@@ -134,8 +139,7 @@ void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops,
         target.writeBox(op.object, op.box);
         break;
       case RecordedOp::Kind::FetchResults:
-        target.fetchResults(answers);
-        if (fetched != nullptr) fetched->push_back(answers);
+        target.fetchResults(answers ? (*answers)[fetch++] : discarded);
         break;
       case RecordedOp::Kind::QueryTriangleRange:
         target.queryTriangles(op.range);

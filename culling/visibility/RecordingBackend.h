@@ -75,9 +75,10 @@ class RecordingBackend final : public VisibilityBackend {
   std::vector<RecordedOp> ops_;
 };
 
-// Issues `ops` again on `target` (through the interface). Each fetch's answers are appended to
-// `fetched` when one is given (another backend's answers to the recorded work), else discarded.
+// Issues `ops` again on `target` through the interface. When `answers` is given, each fetch's
+// answers go into the next of its entries (resized to the number of fetches), else they are
+// discarded.
 void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops,
-               std::vector<std::vector<std::uint8_t>>* fetched = nullptr);
+               std::vector<std::vector<std::uint8_t>>* answers = nullptr);
 
 }  // namespace cdb

@@ -1,6 +1,7 @@
 #include "culling/visibility/VisibilityBackendRegistry.h"
 
 #include "core/Errors.h"
+#include "culling/visibility/GlDrawFloor.h"
 #include "culling/visibility/GlFlagBackend.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 
@@ -14,6 +15,9 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           {.needsGl = true},
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlOcclusionQueryBackend>(resources.gl(), options);
+          },
+          [](BackendResources& resources, const VisibilityOptions& options) {
+            return std::make_unique<GlQueryFloor>(resources.gl(), options);
           });
     r.add("gl-flags",
           "OpenGL, a batch of tests in one draw whose failing fragments set their piece's flag in a "
@@ -27,9 +31,45 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
   return registry;
 }
 
+std::string backendNameOf(const CullingSpec& culling) {
+  return culling.visibility.empty() ? std::string(VisibilityBackendRegistry::kDefault)
+                                    : culling.visibility;
+}
+
+VisibilityOptions visibilityOptionsOf(const CullingSpec& culling) {
+  VisibilityOptions o;
+  o.conservative = culling.conservative;
+  o.rawDepthOffset = culling.rawDepthOffset;
+  o.threads = culling.threads;
+  return o;
+}
+
 void VisibilityBackendRegistry::add(std::string name, std::string description,
-                                    BackendTraits traits, Factory factory) {
-  entries_.push_back({std::move(name), std::move(description), traits, std::move(factory)});
+                                    BackendTraits traits, Factory factory, FloorFactory floor) {
+  entries_.push_back(
+      {std::move(name), std::move(description), traits, std::move(factory), std::move(floor)});
+}
+
+std::unique_ptr<BackendFloor> VisibilityBackendRegistry::createFloor(
+    std::string_view name, BackendResources& resources, const VisibilityOptions& options) const {
+  validate(name);
+  const Entry& e = *find(name);
+  if (e.floor) return e.floor(resources, options);
+  return std::make_unique<ReplayFloor>(e.factory(resources, options));
+}
+
+std::vector<std::string> VisibilityBackendRegistry::available(BackendResources& resources,
+                                                              std::vector<std::string>* why) const {
+  std::vector<std::string> out;
+  for (const auto& e : entries_) {
+    try {
+      (void)e.factory(resources, {});
+      out.push_back(e.name);
+    } catch (const RunError& error) {
+      if (why) why->push_back(e.name + ": " + error.what());
+    }
+  }
+  return out;
 }
 
 const VisibilityBackendRegistry::Entry* VisibilityBackendRegistry::find(std::string_view name) const {

@@ -8,8 +8,10 @@
 #include <string_view>
 #include <vector>
 
+#include "culling/visibility/BackendFloor.h"
 #include "culling/visibility/BackendResources.h"
 #include "culling/visibility/VisibilityBackend.h"
+#include "scenes/ScenarioConfig.h"
 
 namespace cdb {
 
@@ -21,18 +23,31 @@ class VisibilityBackendRegistry {
  public:
   using Factory = std::function<std::unique_ptr<VisibilityBackend>(BackendResources&,
                                                                    const VisibilityOptions&)>;
+  using FloorFactory = std::function<std::unique_ptr<BackendFloor>(BackendResources&,
+                                                                   const VisibilityOptions&)>;
 
   // The registry with every backend of the project.
   static const VisibilityBackendRegistry& builtin();
   // The backend a run uses when neither the command line nor the config names one.
   static constexpr std::string_view kDefault = "gl-queries";
 
-  void add(std::string name, std::string description, BackendTraits traits, Factory factory);
+  // Without a floor factory, the backend's floor replays the recorded calls on a new instance of
+  // it (ReplayFloor).
+  void add(std::string name, std::string description, BackendTraits traits, Factory factory,
+           FloorFactory floor = {});
   // Throws InputError naming the unknown backend and listing the known ones; RunError when the
   // backend cannot start here (no GL).
   [[nodiscard]] std::unique_ptr<VisibilityBackend> create(std::string_view name,
                                                           BackendResources& resources,
                                                           const VisibilityOptions& options) const;
+  // The floor a strategy's work on the backend is measured against (BackendFloor.h).
+  [[nodiscard]] std::unique_ptr<BackendFloor> createFloor(std::string_view name,
+                                                          BackendResources& resources,
+                                                          const VisibilityOptions& options) const;
+  // The backends that start here (the others need a GL that does not open); `why` gets a line
+  // per backend that does not.
+  [[nodiscard]] std::vector<std::string> available(BackendResources& resources,
+                                                   std::vector<std::string>* why = nullptr) const;
   [[nodiscard]] bool contains(std::string_view name) const;
   [[nodiscard]] std::vector<std::string> names() const;
   [[nodiscard]] std::string description(std::string_view name) const;
@@ -46,9 +61,15 @@ class VisibilityBackendRegistry {
     std::string description;
     BackendTraits traits;
     Factory factory;
+    FloorFactory floor;
   };
   const Entry* find(std::string_view name) const;
   std::vector<Entry> entries_;
 };
+
+// The backend a config's culling section names (the default when it names none).
+[[nodiscard]] std::string backendNameOf(const CullingSpec& culling);
+// The backend options a config's culling section sets.
+[[nodiscard]] VisibilityOptions visibilityOptionsOf(const CullingSpec& culling);
 
 }  // namespace cdb

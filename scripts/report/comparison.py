@@ -4,7 +4,7 @@ import csv
 import io
 from dataclasses import dataclass, field
 
-from .runs import STATISTICS, strategy_order
+from .runs import STATISTICS, backend_of, strategy_order
 
 REFERENCE = "ours"                         # the thesis' approach, the denominator of every speedup
 RATIO_NUMERATORS = ("cullide", "cullide_bvh")
@@ -148,7 +148,7 @@ def comparison_markdown(cmp, level=2):
     rule = "|---|" + "---:|" * len(lay.columns)
     for statistic in STATISTICS:
         out.append(f"{h} {cmp.run.name}: {statistic} CD time (ms) by {AXIS_UNITS[lay.axis]}, "
-                   f"{lay.describe_fixed()}{source}\n")
+                   f"{lay.describe_fixed()}, {backend_of(cmp.run.meta)} backend{source}\n")
         out.append(header)
         out.append(rule)
         for strategy in cmp.strategies:

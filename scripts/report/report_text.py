@@ -2,7 +2,7 @@
 
 from .comparison import comparison_markdown
 from .findings import CLOSE, FALLING, RISING
-from .runs import describe_machine
+from .runs import describe_backend, describe_machine
 from .thesis import TABLE_OF, THESIS_HARDWARE
 
 FIGURE_RANGE = {"env1": "Figures 4.2-4.4", "env2": "Figures 4.6-4.9", "env3": "Figures 4.11-4.13"}
@@ -79,14 +79,16 @@ def _machines(sections):
     seen = {}
     for s in sections:
         if s["run"].status == "ok" and s["run"].meta:
-            seen.setdefault(describe_machine(s["run"].meta), []).append(s["run"].name)
+            seen.setdefault(describe_machine(s["run"].meta) + (describe_backend(s["run"].meta),),
+                            []).append(s["run"].name)
     out = ["## Machine and GL", ""]
     if not seen:
         out += ["No meta.json: machine and GL renderer unknown.", ""]
         return out
-    for (machine, gl, commit), envs in seen.items():
+    for (machine, gl, commit, backend), envs in seen.items():
         prefix = f"{', '.join(envs)}: " if len(seen) > 1 else ""
         out.append(f"- {prefix}Machine: {machine}")
+        out.append(f"- {prefix}Visibility backend: {backend}")
         out.append(f"- {prefix}GL renderer: {gl}")
         out.append(f"- {prefix}Commit: `{commit}`")
     out.append("")

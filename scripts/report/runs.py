@@ -172,7 +172,7 @@ def _read_meta(path):
         raise InputError(f"{path}: cannot read: {e}") from None
     if not isinstance(meta, dict):
         raise InputError(f"{path}: expected a JSON object at the top level")
-    for key in ("machine", "gl", "config"):
+    for key in ("machine", "gl", "config", "visibility"):
         if key in meta and not isinstance(meta[key], dict):
             raise InputError(f"{path}: key {key}: expected a JSON object")
     return meta
@@ -199,6 +199,19 @@ def describe_machine(meta):
         gl_line += f", EGL {gl['platform']})" if gl.get("platform") else ")"
     commit = m.get("git_commit") or meta.get("commit") or "unknown"
     return machine, gl_line, commit
+
+
+def backend_of(meta):
+    """The visibility backend that answered the strategies' tests ("gl-queries" for runs made
+    before backends had names: the GL occlusion queries were the only one)."""
+    return (meta.get("visibility") or {}).get("backend") or meta.get("config", {}).get("visibility") or "gl-queries"
+
+
+def describe_backend(meta):
+    """'cpu (cpu depth rasteriser ...)': the backend and what rendered for it."""
+    vis = meta.get("visibility") or {}
+    renderer = vis.get("renderer") or meta.get("gl", {}).get("renderer")
+    return backend_of(meta) + (f" ({renderer})" if renderer else "")
 
 
 def renderer_of(meta):

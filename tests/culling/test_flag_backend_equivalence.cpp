@@ -38,7 +38,8 @@ struct Frame {
 
 // env3 at 50 tori and env1 at 10 tori: one contact each. env2 at 2 dragons, frame 35: a dragon
 // landing on a slope, which CULLIDE tests triangle by triangle (~220k-250k occlusion queries per
-// resolution on gl-queries, ~4 s on llvmpipe; the suite takes ~50 s in Release).
+// resolution on gl-queries, ~4 s on llvmpipe), at 64 and 256 px only: 800 px adds ~10 s to the
+// suite's ~35 s in Release, and env1 and env3 cover 800 px.
 const Frame kFrames[] = {
     {"env3", {"env3.yaml", "tori", 50, 1, 47}, 46},
     {"env1", {"env1.yaml", "tori", 10, 1, 61}, 60},
@@ -136,8 +137,7 @@ TEST_P(FlagBackendEquivalence, SameAnswerToEveryQuery) {
   so.culling = recorded->config.culling;
   auto strategy = StrategyRegistry::builtin().create(strategyName, so);
   strategy->attach(recorded->scene, recorder);
-  const CullingResult result = strategy->cull({poses, f.frame});
-  if (result.decided) GTEST_SKIP() << strategyName << " decides its pairs itself and draws nothing";
+  (void)strategy->cull({poses, f.frame});
 
   GlFlagBackend flags(shared.context, options);
   std::vector<std::vector<std::uint8_t>> fetched;
@@ -183,7 +183,11 @@ std::vector<Param> allParams() {
   std::vector<Param> out;
   for (int f = 0; f < static_cast<int>(std::size(kFrames)); ++f)
     for (const auto& name : StrategyRegistry::builtin().names())
-      for (int resolution : {64, 256, 800}) out.emplace_back(f, name, resolution);
+      // The CPU peers decide their pairs themselves and draw nothing.
+      if (!StrategyRegistry::builtin().isCpuPeer(name))
+        for (int resolution : {64, 256, 800})
+          if (resolution < 800 || kFrames[f].scene.config != "env2.yaml")
+            out.emplace_back(f, name, resolution);
   return out;
 }
 

@@ -1,8 +1,10 @@
-// Every registered strategy x scenes x resolutions, on the GL backend in the conservative mode,
-// against the ground truth on the same frames: no ground-truth pair pruned or split across sets,
-// and the final colliding pairs equal to the ground truth's.
+// Every registered strategy x visibility backend x scenes x resolutions, in the conservative
+// mode, against the ground truth on the same frames: no ground-truth pair pruned or split across
+// sets, and the final colliding pairs equal to the ground truth's. The CPU peers use no backend
+// and no image: they run once per scene.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <memory>
 #include <tuple>
 
@@ -10,9 +12,9 @@
 #include "culling/StrategyRegistry.h"
 #include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
-#include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
+#include "harness/FrameDetection.h"
 #include "harness/TruthComparison.h"
-#include "render/HeadlessGlContext.h"
 
 namespace cdb {
 namespace {
@@ -30,15 +32,14 @@ std::string sceneName(SceneKind k) {
   return "";
 }
 
-class GlFixture {
- public:
-  static GlFixture& get() {
-    static GlFixture f;
-    return f;
-  }
-  HeadlessGlContext context{GlPlatform::Auto};
-  GlOcclusionQueryBackend backend{context};
-};
+// One backend of each kind for the whole suite (GL opened once, on first need).
+VisibilityBackend& sharedBackend(const std::string& name) {
+  static BackendResources resources(GlPlatform::Auto);
+  static std::map<std::string, std::unique_ptr<VisibilityBackend>> backends;
+  auto& b = backends[name];
+  if (!b) b = VisibilityBackendRegistry::builtin().create(name, resources, {});
+  return *b;
+}
 
 std::optional<testing::RandomScene> makeScene(SceneKind kind) {
   switch (kind) {
@@ -68,22 +69,23 @@ std::optional<testing::RandomScene> makeScene(SceneKind kind) {
   return std::nullopt;
 }
 
-using Param = std::tuple<std::string, SceneKind, int>;
+// Strategy, backend, scene, resolution.
+using Param = std::tuple<std::string, std::string, SceneKind, int>;
 
 class StrategyAgainstTruth : public ::testing::TestWithParam<Param> {};
 
 TEST_P(StrategyAgainstTruth, ConservativeModeLosesNoContact) {
-  const auto& [name, kind, resolution] = GetParam();
+  const auto& [name, backendName, kind, resolution] = GetParam();
   const auto scene = makeScene(kind);
   if (!scene) GTEST_SKIP() << "dragon_vrip_res3 not on the asset path";
-  auto& gl = GlFixture::get();
-  gl.backend.setOptions({true, 1e-5});
-  gl.backend.attachScene(scene->scene);
+  VisibilityBackend& backend = sharedBackend(backendName);
+  backend.setOptions({true, 1e-5});
+  backend.attachScene(scene->scene);
 
   StrategyOptions options;
   options.resolution = resolution;
   auto strategy = StrategyRegistry::builtin().create(name, options);
-  strategy->attach(scene->scene, gl.backend);
+  strategy->attach(scene->scene, backend);
   GroundTruth truth(scene->scene);
   ExactPhase exact(scene->scene);
 
@@ -92,12 +94,9 @@ TEST_P(StrategyAgainstTruth, ConservativeModeLosesNoContact) {
     const auto& poses = scene->frames[f];
     const auto expected = truth.compute(poses).collidingPairs;
     truthPairs += expected.size();
-    const auto culled = strategy->cull({poses, static_cast<int>(f)});
-    // As the runner does: a strategy that decides the pairs itself (a CPU peer) skips the exact
-    // phase, and having no sets, it misses in culling exactly the pairs it misses in the end.
-    const auto found = culled.decided ? culled.decided->collidingPairs
-                                      : exact.run(poses, culled.sets).collidingPairs;
-    const auto cmp = compareWithTruth(expected, found, culled, scene->scene.objectCount());
+    const DetectedFrame detected = detectFrame(*strategy, exact, poses, static_cast<int>(f));
+    const auto& found = detected.report.collidingPairs;
+    const auto cmp = compareWithTruth(expected, found, detected.culled, scene->scene.objectCount());
     EXPECT_EQ(cmp.cullingMisses, 0u) << "frame " << f;
     EXPECT_EQ(cmp.falseNegatives, 0u) << "frame " << f;
     EXPECT_EQ(found, expected) << "frame " << f;
@@ -108,18 +107,28 @@ TEST_P(StrategyAgainstTruth, ConservativeModeLosesNoContact) {
 
 std::vector<Param> allParams() {
   std::vector<Param> out;
-  for (const auto& name : StrategyRegistry::builtin().names())
-    for (auto kind : {SceneKind::FewTori, SceneKind::Tori, SceneKind::ToriAndPlanes, SceneKind::Dragons})
-      for (int res : {64, 256, 800})
-        if (kind != SceneKind::FewTori || res == 64) out.emplace_back(name, kind, res);
+  const std::string firstBackend(VisibilityBackendRegistry::kDefault);
+  for (const auto& name : StrategyRegistry::builtin().names()) {
+    // The CPU peers decide the pairs themselves: no backend, no resolution enters their answer.
+    const bool peer = StrategyRegistry::builtin().isCpuPeer(name);
+    for (const auto& backend : VisibilityBackendRegistry::builtin().names()) {
+      if (peer && backend != firstBackend) continue;
+      for (auto kind : {SceneKind::FewTori, SceneKind::Tori, SceneKind::ToriAndPlanes, SceneKind::Dragons})
+        for (int res : {64, 256, 800})
+          if ((kind != SceneKind::FewTori && !peer) || res == 64) out.emplace_back(name, backend, kind, res);
+    }
+  }
   return out;
 }
 
-INSTANTIATE_TEST_SUITE_P(AllStrategies, StrategyAgainstTruth, ::testing::ValuesIn(allParams()),
-                         [](const auto& param) {
-                           return std::get<0>(param.param) + "_" + sceneName(std::get<1>(param.param)) +
-                                  "_" + std::to_string(std::get<2>(param.param));
-                         });
+std::string testName(const ::testing::TestParamInfo<Param>& info) {
+  std::string backend = std::get<1>(info.param);
+  std::erase(backend, '-');
+  return std::get<0>(info.param) + "_" + backend + "_" + sceneName(std::get<2>(info.param)) + "_" +
+         std::to_string(std::get<3>(info.param));
+}
+
+INSTANTIATE_TEST_SUITE_P(AllStrategies, StrategyAgainstTruth, ::testing::ValuesIn(allParams()), testName);
 
 }  // namespace
 }  // namespace cdb

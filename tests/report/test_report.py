@@ -14,10 +14,14 @@ ROOT = Path(__file__).resolve().parents[2]
 REPORT = ROOT / "scripts" / "report.py"
 THESIS = ROOT / "results" / "thesis" / "tables.csv"
 
-FRAME_HEADER = ("environment,strategy,resolution,objects,repeat,frame,cd_ms,cull_ms,exact_ms,pcs_size,sets,"
-                "pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,false_negatives,"
-                "false_positives,culling_misses,queries,draws,triangles_drawn").split(",")
+FRAME_HEADER = ("environment,strategy,visibility,resolution,objects,repeat,frame,cd_ms,cull_ms,exact_ms,"
+                "pcs_size,sets,pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,"
+                "false_negatives,false_positives,culling_misses,queries,draws,triangles_drawn,pixels_tested,"
+                "pixels_written").split(",")
 RENDERER = "llvmpipe (LLVM 15.0.6, 256 bits)"
+# env1 as a run on the CPU backend (no GL recorded), env3 as one made before backends had names.
+BACKEND = {"env1": "cpu", "env3": "gl-queries"}
+CPU_RENDERER = "cpu depth rasteriser (test ISA, 4 threads)"
 
 # env1: CD time of a frame = base + frame (repeat 0) or base + 2 * frame (repeat 1), frames 0..3,
 # so every cell's average is base + 2.25 ms and its maximum base + 6 ms.
@@ -29,7 +33,7 @@ ENV3_BASE = {"cullide": {50: 4.0, 75: 9.0}, "ours": {50: 1.0, 75: 2.0}}
 
 def frame_row(env, strategy, resolution, objects, repeat, frame, cd_ms, sets, false_negatives=0):
     values = dict.fromkeys(FRAME_HEADER, 0)
-    values.update(environment=env, strategy=strategy, resolution=resolution, objects=objects, repeat=repeat,
+    values.update(environment=env, strategy=strategy, visibility=BACKEND[env], resolution=resolution, objects=objects, repeat=repeat,
                   frame=frame, cd_ms=cd_ms, cull_ms=cd_ms * 0.75, exact_ms=cd_ms * 0.25, sets=sets,
                   false_negatives=false_negatives, truth_pairs=2, colliding_pairs=2)
     return [values[k] for k in FRAME_HEADER]
@@ -60,6 +64,9 @@ def write_run(folder, env, rows):
             "gl": {"platform": "surfaceless", "vendor": "Mesa", "renderer": RENDERER,
                    "version": "4.5 (Core Profile) Mesa 22.3.6"},
             "config": {"environment": env, "ground_truth": True}}
+    if BACKEND[env] == "cpu":
+        del meta["gl"]
+        meta["visibility"] = {"backend": "cpu", "renderer": CPU_RENDERER, "threads": 4}
     (folder / "meta.json").write_text(json.dumps(meta, indent=2))
 
 
@@ -148,6 +155,13 @@ class ReportOnSyntheticRuns(unittest.TestCase):
         self.assertIn("| cullide | 22.25 (thesis 10.44) | 32.25 (thesis 11.98) |", md)
         self.assertIn(f"{22.25 / 7.25:.2f} (thesis {10.4387 / 4.984:.2f})", md)
 
+    def test_tables_and_report_name_the_visibility_backend(self):
+        self.assertIn("average CD time (ms) by frame-buffer resolution (pixels, square), 50 objects, cpu backend",
+                      (self.dir / "env1" / "comparison.md").read_text())
+        self.assertIn("gl-queries backend", (self.dir / "env3" / "comparison.md").read_text())
+        self.assertIn(f"Visibility backend: cpu ({CPU_RENDERER})", self.report)
+        self.assertIn(f"Visibility backend: gl-queries ({RENDERER})", self.report)
+
     def test_env3_thesis_value_in_object_count_column(self):
         rows = read_csv_rows(self.dir / "env3" / "comparison.csv")
         avg = rows[("cd_time_ms", "average", "cullide")]
@@ -216,7 +230,7 @@ class ReportOnBadInput(unittest.TestCase):
         path = self.dir / "env1" / "frames.csv"
         lines = path.read_text().splitlines()
         fields = lines[3].split(",")
-        fields[6] = "fast"
+        fields[FRAME_HEADER.index("cd_ms")] = "fast"
         lines[3] = ",".join(fields)
         path.write_text("\n".join(lines) + "\n")
         self.assert_one_line_failure(run_report(self.dir), "frames.csv:4", "cd_ms")

@@ -175,7 +175,7 @@ struct Outcome {
   int fullyVisible = 0;  // tests that answered "fully visible"
 };
 
-Outcome runCases(GlOcclusionQueryBackend& backend, bool conservative, PairKind kind, int resolution,
+Outcome runCases(VisibilityBackend& backend, bool conservative, PairKind kind, int resolution,
                  int count, unsigned seed) {
   const Aabb bounds(Vec3::Constant(-1.0), Vec3::Constant(1.0));
   const DepthPassSetup setup =
@@ -220,16 +220,14 @@ Outcome runCases(GlOcclusionQueryBackend& backend, bool conservative, PairKind k
 constexpr int kResolutions[] = {16, 64, 256, 800};
 constexpr int kCasesPerKind = 50;  // per kind and resolution: 7 x 4 x 50 cases, 2 tests each
 
-class ConservativeContact : public testing::Test {
+// Every registered backend: the conservative rules are part of the backend contract.
+class ConservativeContact : public testing::TestWithParam<std::string> {
  protected:
-  static void SetUpTestSuite() { backend_ = new GlOcclusionQueryBackend(test::sharedGlContext()); }
-  static void TearDownTestSuite() {
-    delete backend_;
-    backend_ = nullptr;
+  void SetUp() override {
+    backend_ = VisibilityBackendRegistry::builtin().create(GetParam(), test::sharedBackendResources(), {});
   }
-  static GlOcclusionQueryBackend* backend_;
+  std::unique_ptr<VisibilityBackend> backend_;
 };
-GlOcclusionQueryBackend* ConservativeContact::backend_ = nullptr;
 
 const PairKind kContactKinds[] = {
     PairKind::TouchAtPoint, PairKind::CrossShort, PairKind::SliverTouch, PairKind::SliverCross,
@@ -256,7 +254,7 @@ const char* kindName(PairKind k) {
   return "";
 }
 
-TEST_F(ConservativeContact, NeverReportsTouchingOrCrossingPairsFullyVisible) {
+TEST_P(ConservativeContact, NeverReportsTouchingOrCrossingPairsFullyVisible) {
   int total = 0;
   for (int resolution : kResolutions) {
     for (PairKind kind : kContactKinds) {
@@ -271,7 +269,7 @@ TEST_F(ConservativeContact, NeverReportsTouchingOrCrossingPairsFullyVisible) {
   EXPECT_GE(total, 2000);
 }
 
-TEST_F(ConservativeContact, RawRasterisationMissesSomeAtLowResolution) {
+TEST_P(ConservativeContact, RawRasterisationMissesSomeAtLowResolution) {
   for (int resolution : kResolutions) {
     int missed = 0, pairs = 0;
     for (PairKind kind : kContactKinds) {
@@ -289,7 +287,7 @@ TEST_F(ConservativeContact, RawRasterisationMissesSomeAtLowResolution) {
   }
 }
 
-TEST_F(ConservativeContact, StillSeparatesPairsWithAClearGap) {
+TEST_P(ConservativeContact, StillSeparatesPairsWithAClearGap) {
   for (int resolution : kResolutions) {
     const Outcome o =
         runCases(*backend_, true, PairKind::Gap, resolution, 2 * kCasesPerKind, 7000u + resolution);
@@ -298,6 +296,9 @@ TEST_F(ConservativeContact, StillSeparatesPairsWithAClearGap) {
     EXPECT_GE(o.fullyVisible, o.pairs * 7 / 10) << "at " << resolution;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Backends, ConservativeContact, testing::ValuesIn(test::registeredBackends()),
+                         [](const auto& info) { return test::testNamePart(info.param); });
 
 }  // namespace
 }  // namespace cdb

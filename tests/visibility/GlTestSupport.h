@@ -5,7 +5,11 @@
 #include <initializer_list>
 #include <vector>
 
+#include <cctype>
+#include <string>
+
 #include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "render/HeadlessGlContext.h"
 #include "scenes/SceneGeometry.h"
 
@@ -15,6 +19,22 @@ inline HeadlessGlContext& sharedGlContext() {
   static HeadlessGlContext context(GlPlatform::Auto);
   context.makeCurrent();
   return context;
+}
+
+// Resources for backends made by the registry: the shared context, opened only when a backend
+// needs GL.
+inline BackendResources& sharedBackendResources() {
+  static BackendResources resources([]() -> HeadlessGlContext& { return sharedGlContext(); });
+  return resources;
+}
+
+// Every registered backend, for suites every backend must pass (the backend contract).
+inline std::vector<std::string> registeredBackends() { return VisibilityBackendRegistry::builtin().names(); }
+
+// A backend name as a test-name part ("gl-queries" -> "glqueries").
+inline std::string testNamePart(std::string name) {
+  std::erase_if(name, [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); });
+  return name;
 }
 
 inline Mesh triangleMesh(const Eigen::Vector3f& a, const Eigen::Vector3f& b,

@@ -1,6 +1,9 @@
-// What a fully-visible test means, on the GL backend, in both modes: an object behind what was
-// written is not fully visible, one in front or beside it is; the DepthUse passes; boxes.
+// The backend contract: what a fully-visible test means, on every registered backend, in both
+// modes: an object behind what was written is not fully visible, one in front or beside it is;
+// the DepthUse passes; boxes; batches answer each piece; misuse is reported.
 #include <gtest/gtest.h>
+
+#include <tuple>
 
 #include "core/Errors.h"
 #include "tests/visibility/GlTestSupport.h"
@@ -11,21 +14,26 @@ namespace {
 using test::squareMesh;
 using test::wholeOf;
 
-struct ModeName {
-  std::string operator()(const testing::TestParamInfo<bool>& info) const {
-    return info.param ? "Conservative" : "Raw";
+// Backend, conservative mode.
+using Param = std::tuple<std::string, bool>;
+
+struct ParamName {
+  std::string operator()(const testing::TestParamInfo<Param>& info) const {
+    return test::testNamePart(std::get<0>(info.param)) +
+           (std::get<1>(info.param) ? "_Conservative" : "_Raw");
   }
 };
 
-class OcclusionSemantics : public testing::TestWithParam<bool> {
+class OcclusionSemantics : public testing::TestWithParam<Param> {
  protected:
   // Squares of half size 1: A at z = 0, B at z = 2 (behind A along +z), C at z = -2 (in front),
   // D beside A in the image (x = 5), E coplanar with A.
   void SetUp() override {
     scene_ = test::sceneOf({squareMesh(0, 0, 0, 1), squareMesh(0, 0, 2, 1), squareMesh(0, 0, -2, 1),
                             squareMesh(5, 0, 0, 1), squareMesh(0.5f, 0, 0, 1)});
-    backend_ = std::make_unique<GlOcclusionQueryBackend>(test::sharedGlContext(),
-                                                         VisibilityOptions{GetParam(), 1e-5});
+    backend_ = VisibilityBackendRegistry::builtin().create(
+        std::get<0>(GetParam()), test::sharedBackendResources(),
+        VisibilityOptions{std::get<1>(GetParam()), 1e-5});
     backend_->attachScene(scene_);
     backend_->setPoses(test::identityPoses(scene_.objectCount()));
   }
@@ -47,7 +55,7 @@ class OcclusionSemantics : public testing::TestWithParam<bool> {
   }
 
   SceneGeometry scene_;
-  std::unique_ptr<GlOcclusionQueryBackend> backend_;
+  std::unique_ptr<VisibilityBackend> backend_;
 };
 
 TEST_P(OcclusionSemantics, BehindIsOccludedFrontAndBesideAreVisible) {
@@ -165,7 +173,52 @@ TEST_P(OcclusionSemantics, MisuseIsReported) {
   EXPECT_THROW(backend_->setPoses(test::identityPoses(2)), RunError);
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, OcclusionSemantics, testing::Bool(), ModeName());
+TEST_P(OcclusionSemantics, BatchesAnswerEachPieceAgainstWhatWasWrittenBefore) {
+  OrientedBox behind;  // boxes of object 3 (world frame): behind A, in front of A, beside A
+  behind.halfExtents = Eigen::Vector3d(0.5, 0.5, 0.1);
+  behind.center = Eigen::Vector3d(0, 0, 2.5);
+  OrientedBox front = behind;
+  front.center = Eigen::Vector3d(0, 0, -2.5);
+  OrientedBox beside = behind;
+  beside.center = Eigen::Vector3d(5, 0, 0.5);
+  const OrientedBox boxes[] = {behind, front, beside};
+  const std::uint32_t bothOfC[] = {1, 0};
+
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  backend_->writeRange(wholeOf(scene_, 0));
+  const QueryIndex triangles = backend_->queryTriangles(wholeOf(scene_, 1));   // B: behind A
+  // C: in front. Its two triangles share an edge at equal depth: had the first been written
+  // before the second was tested, the second would not be fully visible.
+  const QueryIndex listed = backend_->queryTriangles(2, bothOfC);
+  const QueryIndex boxAnswers = backend_->queryBoxes(3, boxes);
+  EXPECT_EQ(backend_->queryTriangles(3, {}), kNoQuery);
+  EXPECT_EQ(backend_->queryBoxes(3, {}), kNoQuery);
+  const QueryIndex coplanarE = backend_->queryTriangles(wholeOf(scene_, 4));
+  backend_->writeBoxes(3, std::span<const OrientedBox>(boxes + 1, 1));  // the front box
+  const QueryIndex afterWrite = backend_->queryTriangles(wholeOf(scene_, 2));  // C behind it now
+  std::vector<std::uint8_t> answers;
+  backend_->fetchResults(answers);
+  ASSERT_EQ(answers.size(), 11u);
+  EXPECT_EQ(listed, triangles + 2);
+  EXPECT_EQ(boxAnswers, listed + 2);
+  EXPECT_EQ((std::vector<std::uint8_t>(answers.begin() + triangles, answers.begin() + triangles + 2)),
+            (std::vector<std::uint8_t>{0, 0}))
+      << "both triangles of B lie behind A";
+  EXPECT_EQ(answers[listed], 1) << "C in front of A";
+  EXPECT_EQ(answers[listed + 1], 1) << "pieces of one batch do not occlude each other";
+  EXPECT_EQ(answers[boxAnswers], 0) << "box behind A";
+  EXPECT_EQ(answers[boxAnswers + 1], 1) << "box in front of A";
+  EXPECT_EQ(answers[boxAnswers + 2], 1) << "box beside A";
+  EXPECT_EQ(answers[coplanarE], 0) << "each triangle of E overlaps A, coplanar";
+  EXPECT_EQ(answers[coplanarE + 1], 0) << "each triangle of E overlaps A, coplanar";
+  EXPECT_EQ(answers[afterWrite], 0) << "C behind the front box written after the batches";
+  EXPECT_EQ(answers[afterWrite + 1], 0) << "C behind the front box written after the batches";
+  EXPECT_EQ(backend_->counters().queries, 11u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, OcclusionSemantics,
+                         testing::Combine(testing::ValuesIn(test::registeredBackends()), testing::Bool()),
+                         ParamName());
 
 }  // namespace
 }  // namespace cdb

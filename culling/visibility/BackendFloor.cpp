@@ -1,0 +1,33 @@
+#include "culling/visibility/BackendFloor.h"
+
+#include "core/Errors.h"
+
+namespace cdb {
+
+ReplayFloor::ReplayFloor(std::unique_ptr<VisibilityBackend> backend) : backend_(std::move(backend)) {}
+
+void ReplayFloor::prepare(std::span<const RecordedOp> ops) {
+  const SceneGeometry* scene = nullptr;
+  expected_.clear();
+  for (const RecordedOp& op : ops) {
+    if (op.kind == RecordedOp::Kind::AttachScene) {
+      if (scene != nullptr && scene != op.scene)
+        throw InputError("a recording with more than one scene cannot be replayed as one floor");
+      scene = op.scene;
+    }
+    if (op.kind == RecordedOp::Kind::FetchResults) expected_.push_back(&op.answers);
+  }
+  if (scene == nullptr) throw InputError("the recording attaches no scene");
+  ops_ = ops;
+  answers_.assign(expected_.size(), {});
+}
+
+void ReplayFloor::replayOnce() { replayOps(*backend_, ops_, &answers_); }
+
+bool ReplayFloor::answersMatch() const {
+  for (std::size_t i = 0; i < expected_.size(); ++i)
+    if (answers_[i] != *expected_[i]) return false;
+  return true;
+}
+
+}  // namespace cdb
