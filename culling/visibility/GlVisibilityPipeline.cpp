@@ -200,6 +200,18 @@ void GlVisibilityPipeline::applyFlagDraw(const FlagDraw& draw) {
   flagDrawSet_ = true;
 }
 
+void GlVisibilityPipeline::drawSegments(std::uint32_t first, std::uint32_t count) {
+  runFirsts_.clear();
+  runCounts_.clear();
+  for (std::uint32_t done = 0; done < count; done += kSegmentTriangles) {
+    runFirsts_.push_back(static_cast<GLint>(kConservativeVerticesPerTriangle * (first + done)));
+    runCounts_.push_back(static_cast<GLsizei>(kConservativeVerticesPerTriangle *
+                                              std::min(kSegmentTriangles, count - done)));
+  }
+  glMultiDrawArrays(GL_TRIANGLES, runFirsts_.data(), runCounts_.data(),
+                    static_cast<GLsizei>(runFirsts_.size()));
+}
+
 void GlVisibilityPipeline::drawRuns(const GlMeshSlot& slot, std::span<const Run> runs) {
   runCounts_.clear();
   if (pulled()) {

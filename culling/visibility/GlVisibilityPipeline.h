@@ -96,7 +96,9 @@ class GlVisibilityPipeline {
   // Triangles [first, first + count) of a mesh.
   void draw(const GlMeshSlot& slot, std::uint32_t first, std::uint32_t count) {
     const std::uint32_t global = slot.firstTriangle + first;
-    if (pulled())
+    if (programs_ == PipelinePrograms::Flags)
+      drawNumbered(global, count);
+    else if (pulled())
       glDrawArrays(GL_TRIANGLES, static_cast<GLint>(kConservativeVerticesPerTriangle * global),
                    static_cast<GLsizei>(kConservativeVerticesPerTriangle * count));
     else
@@ -110,9 +112,18 @@ class GlVisibilityPipeline {
   void drawRuns(const GlMeshSlot& slot, std::span<const Run> runs);
   // Flags programs only: triangles k in [first, first + count) of a draw (a list's entries, with
   // FlagDraw::listed), and `instances` instances of a mesh (boxes, with FlagDraw::boxBase).
+  // Large draws go as a multi-draw of segments: llvmpipe's vertex pipeline costs quadratically
+  // in the vertices of one draw where any of them needs clipping (it resets the ids of all the
+  // draw's vertices every time its small vertex buffer fills), and conservative triangles at the
+  // viewport's border do. Segments change nothing for the shaders: in each draw of
+  // glMultiDrawArrays gl_VertexID counts from that draw's `first`, as in one glDrawArrays.
   void drawNumbered(std::uint32_t first, std::uint32_t count) {
-    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(kConservativeVerticesPerTriangle * first),
-                 static_cast<GLsizei>(kConservativeVerticesPerTriangle * count));
+    if (count <= kSegmentTriangles) {
+      glDrawArrays(GL_TRIANGLES, static_cast<GLint>(kConservativeVerticesPerTriangle * first),
+                   static_cast<GLsizei>(kConservativeVerticesPerTriangle * count));
+      return;
+    }
+    drawSegments(first, count);
   }
   void drawInstances(const GlMeshSlot& slot, std::uint32_t instances) {
     glDrawArraysInstanced(GL_TRIANGLES,
@@ -134,6 +145,8 @@ class GlVisibilityPipeline {
   void applyRole(DrawRole role);
   void applyLocal(const Eigen::Matrix4f& local, bool identity);
   void applyFlagDraw(const FlagDraw& draw);
+  static constexpr std::uint32_t kSegmentTriangles = 32;
+  void drawSegments(std::uint32_t first, std::uint32_t count);
   // Triangles are pulled from the storage buffers (no vertex array).
   [[nodiscard]] bool pulled() const { return conservative_ || programs_ == PipelinePrograms::Flags; }
   [[nodiscard]] GLuint programFor(DrawRole role) const {
