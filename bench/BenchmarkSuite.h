@@ -6,7 +6,7 @@
 //                                             visibility backend (backend "-" for the CPU peers)
 //   floor/<env>/<strategy>/<backend>/res:<r>/real_time   that cull's backend work replayed bare
 //   exact/<env>/ours_sets                     the exact phase on the sets `ours` leaves (800)
-//   exact/<env>/all_objects                   the exact phase on one set of every object
+//   exact/<env>/all_pairs_sets                   the exact phase on one set of every object
 //   bvh_build/<mesh>/<env>                    one OBB tree build under the env's tree options
 //
 // for env1, env2, env3 (RecordedFrames.h says which frame), every visibility backend that starts

@@ -24,7 +24,7 @@ struct MeasuredFrame {
 };
 
 // The frames measured unless overridden (touching pairs as the ground truth of `cdbench run`
-// counts them, seed 1; exact/<env>/all_objects reports them as colliding_pairs, so a config
+// counts them, seed 1; exact/<env>/all_pairs_sets reports them as colliding_pairs, so a config
 // change that moves the contacts shows there):
 //  env1, frame 150 (3 s): the config's 50 tori have settled into a pile in the trough's crease;
 //    113 object pairs touch (tori with tori and with the planes).

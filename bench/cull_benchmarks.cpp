@@ -70,9 +70,10 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
 void registerCullBenchmarks(RecordedFrames& frames) {
   for (const MeasuredFrame& m : frames.frames())
     for (const std::string& strategy : StrategyRegistry::builtin().names()) {
-      // A CPU peer uses no backend: one entry, on the default one (it draws nothing on it).
+      // A CPU peer or a reference uses no backend: one entry, on the default one (it draws
+      // nothing on it).
       const std::vector<std::string> backends =
-          StrategyRegistry::builtin().isCpuPeer(strategy) ? std::vector<std::string>{"-"} : frames.backends();
+          !StrategyRegistry::builtin().usesBackend(strategy) ? std::vector<std::string>{"-"} : frames.backends();
       for (const std::string& backend : backends)
         for (int resolution : kResolutions) {
           const std::string name = "cull/" + m.environment + "/" + strategy + "/" + backend +

@@ -43,7 +43,7 @@ void replayRecordedCull(benchmark::State& state, RecordedFrames& frames,
 void registerFloorBenchmarks(RecordedFrames& frames) {
   for (const MeasuredFrame& m : frames.frames())
     for (const std::string& strategy : StrategyRegistry::builtin().names()) {
-      if (StrategyRegistry::builtin().isCpuPeer(strategy)) continue;
+      if (!StrategyRegistry::builtin().usesBackend(strategy)) continue;
       for (const std::string& backend : frames.backends())
         for (int resolution : kResolutions) {
           const std::string name = "floor/" + m.environment + "/" + strategy + "/" + backend +

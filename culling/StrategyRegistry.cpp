@@ -4,6 +4,7 @@
 #include "culling/peers/BulletPeer.h"
 #include "culling/peers/FclPeer.h"
 #include "culling/peers/OdePeer.h"
+#include "culling/strategies/AllPairs.h"
 #include "culling/strategies/CollisionIndependentSets.h"
 #include "culling/strategies/Cullide.h"
 #include "culling/strategies/CullideWithHierarchy.h"
@@ -27,6 +28,8 @@ const StrategyRegistry& StrategyRegistry::builtin() {
           [](const StrategyOptions& o) {
             return std::make_unique<HierarchicalCollisionIndependentSets>(o);
           });
+    r.add("all_pairs", "reference: every object in one set, no culling; the exact phase alone",
+          [](const StrategyOptions& o) { return std::make_unique<AllPairs>(o); }, Kind::Reference);
     r.add("fcl", "CPU peer: FCL 0.7, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
           [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); }, Kind::CpuPeer);
     r.add("bullet", "CPU peer: Bullet 3.24 (double), btDbvtBroadphase, GImpact meshes, margin 0",

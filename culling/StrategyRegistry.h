@@ -25,8 +25,9 @@ class StrategyRegistry {
   static const StrategyRegistry& builtin();
 
   // What an entry is: an image-based culling strategy (asks a visibility backend, leaves sets for
-  // the exact phase) or a CPU peer (decides the colliding pairs itself, draws nothing).
-  enum class Kind { ImageBased, CpuPeer };
+  // the exact phase), a reference that leaves sets without asking any backend (all_pairs), or a
+  // CPU peer (decides the colliding pairs itself, draws nothing).
+  enum class Kind { ImageBased, Reference, CpuPeer };
 
   void add(std::string name, std::string description, Factory factory,
            Kind kind = Kind::ImageBased);
@@ -39,6 +40,8 @@ class StrategyRegistry {
   // Throws InputError for an unknown name.
   [[nodiscard]] Kind kind(std::string_view name) const;
   [[nodiscard]] bool isCpuPeer(std::string_view name) const { return kind(name) == Kind::CpuPeer; }
+  // Whether its answer or time depends on the visibility backend and the resolution.
+  [[nodiscard]] bool usesBackend(std::string_view name) const { return kind(name) == Kind::ImageBased; }
   // Throws InputError for the first unknown name.
   void validate(const std::vector<std::string>& names) const;
 

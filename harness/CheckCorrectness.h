@@ -32,7 +32,7 @@ struct CorrectnessRow {
 };
 
 // Every case of `plan` for each of `strategies` (created by `registry`) on the visibility backend
-// `backend`. A strategy that decides the pairs itself (CullingResult::decided: the CPU peers)
+// `backend`. What draws nothing (the CPU peers, the all_pairs reference: registry.usesBackend)
 // runs at the first resolution only, and only when `withPeers`: neither the frame-buffer size nor
 // the backend enters its answer.
 [[nodiscard]] std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources,

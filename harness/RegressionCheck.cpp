@@ -249,7 +249,7 @@ void printCheckReport(const CheckReport& r, std::FILE* out) {
   }
   std::fprintf(out,
                "  a/b: culling time of a over b's (higher: b faster), allowed >= baseline / %g;\n"
-               "  x/floor: x's culling time over its GL work replayed bare, allowed <= max(baseline * %g, %g)\n",
+               "  x/floor: x's culling time over its backend work replayed bare, allowed <= max(baseline * %g, %g)\n",
                kSpeedupTolerance, kFloorTolerance, kFloorAllowedAtLeast);
 
   for (const auto& n : r.notes) std::fprintf(out, "note: %s\n", n.c_str());

@@ -1,38 +1,49 @@
 #!/usr/bin/env bash
 # Reproduces the thesis' Tables 4.1-4.3 and Chapter 4 figures: set-up if needed, build, run env1,
-# env2 and env3, then write comparison tables, figures and REPORT.md into results/<profile>/.
+# env2 and env3 on a visibility backend, then write comparison tables, figures and REPORT.md into
+# results/<profile>/ (one folder per backend: results/<profile>/<backend>/envN).
 #
-#   scripts/reproduce.sh [quick|full]
+#   scripts/reproduce.sh [quick|standard|full] [--visibility NAME] [--jobs N]
 #
-# quick (default): every resolution (500..1200) and object count (50..200) of the thesis, the
-#   thesis' three strategies, one simulation per cell group, and a few frames of each simulation:
-#   env1 and env2 frame 0 and frame 150 (--frame-stride 150: the drop, and the settled pile),
-#   env3 frames 0, 75, 150 and 225. Within 15 minutes on 2 cores with llvmpipe, build included.
-#   Most of it is CULLIDE on env2's settled dragons: about 3 million occlusion queries a frame.
-# full: the thesis' protocol: 10 repeats, every frame of every simulation (hours on llvmpipe;
-#   see README "Beyond one machine" to split it into shards).
-# A stopped run resumes where it stopped when the same command is run again.
+# Every profile runs every strategy of the configs (the thesis' three and quick_cullide) at every
+# resolution (500..1200) and object count (50..200) of the thesis, with the ground truth on every
+# measured frame, on the primary backend (default: cpu, the fastest where no GPU is at hand; see
+# README "Visibility backends"):
+#   quick (default): one simulation per cell group, every 10th frame (30 frames spread over each
+#     simulation). Within 15 minutes on 2 cores, build included.
+#   standard: the thesis' 10 simulations per cell group, every 5th frame (60 frames each); then the
+#     other backends on a subset (gl-flags: env1 at 500 and 800 px, env3 at 50, 125, 200 objects,
+#     3 simulations; gl-queries, whose occlusion queries cost ~15 us each on llvmpipe: env1 at 500 px
+#     and env3 at 50 and 100 objects, 2 simulations, every 30th frame), on the same recorded frames
+#     (same seeds), for the report's "what depends on the cost model".
+#   full: the thesis' protocol, 10 simulations, every frame (split it into shards on a cluster:
+#     README "Beyond one machine").
+# Each environment's cells are split into --jobs shares (default: the number of cores) run at
+# once with one backend thread each, into one run folder. A stopped run resumes where it stopped
+# when the same command is run again.
 # CDBENCH_ASSETS must name a folder with dragon_vrip_res3 (or run scripts/fetch-assets.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-profile=${1:-quick}
-strategies=${CDBENCH_STRATEGIES:-cullide,cullide_bvh,ours}
+profile=quick
+primary=cpu
+jobs=$(nproc)
+while (($#)); do
+  case "$1" in
+    quick|standard|full) profile=$1 ;;
+    --visibility) primary=${2:?--visibility needs a backend name}; shift ;;
+    --jobs) jobs=${2:?--jobs needs a number}; shift ;;
+    *)
+      echo "usage: scripts/reproduce.sh [quick|standard|full] [--visibility NAME] [--jobs N]" >&2
+      exit 2
+      ;;
+  esac
+  shift
+done
 
 case "$profile" in
-  quick)
-    env1=(--repeats 1 --frame-stride 150 --strategies "$strategies")
-    env2=(--repeats 1 --frame-stride 150 --strategies "$strategies")
-    env3=(--repeats 1 --frame-stride 75 --strategies "$strategies")
-    ;;
-  full)
-    env1=(--strategies "$strategies")
-    env2=(--strategies "$strategies")
-    env3=(--strategies "$strategies")
-    ;;
-  *)
-    echo "usage: scripts/reproduce.sh [quick|full]" >&2
-    exit 2
-    ;;
+  quick) common=(--repeats 1 --frame-stride 10) ;;
+  standard) common=(--repeats 10 --frame-stride 5) ;;
+  full) common=() ;;
 esac
 
 bash scripts/setup.sh
@@ -42,18 +53,45 @@ out=results/$profile
 mkdir -p "$out"
 start=$(date +%s)
 failed=()
-for env in env1 env2 env3; do
-  case $env in
-    env1) extra=("${env1[@]}") ;;
-    env2) extra=("${env2[@]}") ;;
-    env3) extra=("${env3[@]}") ;;
-  esac
-  echo "== $env ($profile)" >&2
+
+# run BACKEND ENV [cdbench run options...]: the environment's cells in $jobs shares at once.
+run() {
+  local backend=$1 env=$2
+  shift 2
+  local dir=$out/$backend/$env pids=() status=0
+  echo "== $env on $backend ($profile)" >&2
+  for ((i = 1; i <= jobs; ++i)); do
+    build/cdbench run "configs/$env.yaml" --visibility "$backend" --threads 1 --quiet \
+      --shard "$i/$jobs" --out "$dir" "$@" &
+    pids+=($!)
+  done
+  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+  # The shares wrote their cells into one folder; the last to finish wrote the tables. Should two
+  # have finished at once, merging again writes them from every cell.
+  ((status == 0)) && [[ -s $dir/frames.csv ]] || build/cdbench merge --out "$dir" "$dir" >/dev/null 2>&1 || status=1
   # One environment failing (e.g. env2 without the dragon on the asset path) does not lose the
   # others: the report says which is missing, and the script exits non-zero at the end.
-  build/cdbench run "configs/$env.yaml" "${extra[@]}" --out "$out/$env" || failed+=("$env")
-done
-scripts/report.py "$out"
+  ((status == 0)) || failed+=("$backend/$env")
+}
+
+for env in env1 env2 env3; do run "$primary" "$env" "${common[@]}"; done
+if [[ $profile == standard ]]; then
+  for backend in gl-flags gl-queries; do
+    [[ $backend == "$primary" ]] && continue
+    if ! build/cdbench info 2>/dev/null | grep -q "^  $backend  *works"; then
+      echo "reproduce: $backend does not start here; its subset is left out" >&2
+      continue
+    fi
+    if [[ $backend == gl-flags ]]; then
+      run gl-flags env1 --repeats 3 --frame-stride 5 --resolutions 500,800
+      run gl-flags env3 --repeats 3 --frame-stride 5 --objects 50,125,200
+    else
+      run gl-queries env1 --repeats 2 --frame-stride 30 --resolutions 500
+      run gl-queries env3 --repeats 2 --frame-stride 30 --objects 50,100
+    fi
+  done
+fi
+/usr/bin/python3 scripts/report.py "$out" --primary "$primary"
 echo "reproduce: $profile done in $(( $(date +%s) - start )) s: $out/REPORT.md" >&2
 if ((${#failed[@]})); then
   echo "reproduce: failed: ${failed[*]} (see the messages above; rerun to resume)" >&2

@@ -4,6 +4,7 @@
 #include "culling/visibility/GlDrawFloor.h"
 #include "culling/visibility/GlFlagBackend.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/cpu/CpuRasterBackend.h"
 
 namespace cdb {
 
@@ -25,6 +26,11 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           {.needsGl = true},
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlFlagBackend>(resources.gl(), options);
+          });
+    r.add("cpu",
+          "exact conservative CPU depth rasteriser (SIMD, threads); needs no GL",
+          {.needsGl = false}, [](BackendResources&, const VisibilityOptions& options) {
+            return std::make_unique<CpuRasterBackend>(options);
           });
     return r;
   }();

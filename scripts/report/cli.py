@@ -1,9 +1,17 @@
-"""Command line: report.py RESULT_DIR [--thesis FILE] writes comparison tables, figures and REPORT.md."""
+"""Command line: report.py RESULT_DIR [--thesis FILE] [--primary BACKEND] writes comparison tables,
+figures and REPORT.md.
+
+RESULT_DIR holds the environments directly (RESULT_DIR/envN/) or one folder per visibility backend
+(RESULT_DIR/<backend>/envN/). In the second layout every backend's environment folder gets its
+comparison.md and .csv (on the columns of the primary backend's tables), the primary backend's folders
+get the figures, and RESULT_DIR/REPORT.md holds the primary's tables and the backends side by side.
+"""
 
 import argparse
 import sys
 from pathlib import Path
 
+from .backends import choose_primary, cost_model, discover_backends
 from .comparison import build_comparison, write_comparison
 from .correctness import correctness_rows
 from .figures import draw_figures
@@ -17,40 +25,78 @@ from .thesis import DEFAULT_PATH, ThesisTables
 def parse_args(argv):
     p = argparse.ArgumentParser(
         prog="report.py",
-        description="Compare a reproduction run (RESULT_DIR/env1, env2, env3, each a `cdbench run` output) "
-                    "with the thesis' Tables 4.1-4.3: writes <env>/comparison.md and .csv, the Chapter 4 "
-                    "figures as PNG, and RESULT_DIR/REPORT.md.")
+        description="Compare a reproduction run (RESULT_DIR/env1, env2, env3, each a `cdbench run` output, or "
+                    "RESULT_DIR/<backend>/envN for several visibility backends) with the thesis' Tables 4.1-4.3: "
+                    "writes <env>/comparison.md and .csv, the Chapter 4 figures as PNG, and RESULT_DIR/REPORT.md.")
     p.add_argument("result_dir", metavar="RESULT_DIR", type=Path)
     p.add_argument("--thesis", type=Path, default=DEFAULT_PATH, metavar="FILE",
                    help="the thesis' tables (default: results/thesis/tables.csv)")
+    p.add_argument("--primary", metavar="BACKEND",
+                   help="with one folder per backend: the backend of the main tables and figures "
+                        "(default: cpu if present, else the first backend folder)")
     return p.parse_args(argv)
 
 
-def run(result_dir: Path, thesis_path: Path):
+def run(result_dir: Path, thesis_path: Path, primary: str = None):
     if not result_dir.is_dir():
         raise InputError(f"{result_dir}: not a folder (expected RESULT_DIR holding env1/, env2/, env3/)")
     if not thesis_path.is_file():
         raise InputError(f"{thesis_path}: thesis tables not found")
     thesis = ThesisTables(thesis_path)
+    backends = discover_backends(result_dir)
+    primary = choose_primary(backends, primary)
     # Read every input before writing anything, so a malformed file leaves no half-written report.
-    runs = [read_environment(result_dir, name) for name in discover_environments(result_dir)]
-    sections = []
-    for env_run in runs:
-        section = {"run": env_run, "comparison": None, "figures": [], "skipped": [], "findings": None,
-                   "correctness": []}
-        if env_run.status == "ok":
-            cmp = build_comparison(env_run, thesis)
-            write_comparison(cmp)
-            section["comparison"] = cmp
-            section["figures"], section["skipped"] = draw_figures(cmp, thesis)
-            section["findings"] = analyse(cmp, thesis)
-            section["correctness"] = correctness_rows(env_run)
+    folders = backends or [""]
+    names = discover_environments(result_dir) if not backends else _union(
+        discover_environments(result_dir / b) for b in backends)
+    runs = {b: {name: read_environment(result_dir, name, b) for name in names} for b in folders}
+    main = primary or ""
+    sections, cost_models, others = [], [], []
+    for name in names:
+        built = {}
+        like = None
+        # The primary's columns first; a backend lacking this environment lends its place to the next one.
+        for b in [main] + [f for f in folders if f != main]:
+            env_run = runs[b][name]
+            if env_run.status == "ok":
+                built[b] = build_comparison(env_run, thesis, like)
+                like = like or built[b].layout
+        section = _section(runs[main][name], built.get(main), thesis, figures=True)
         sections.append(section)
+        for b in folders:
+            if b != main and runs[b][name].status == "ok":
+                others.append(_section(runs[b][name], built[b], thesis, figures=False))
+        if backends and built:
+            absent = {b: runs[b][name].status for b in folders if b not in built}
+            cost_models.append(cost_model(name, {b: built[b] for b in folders if b in built}, absent))
+    layout = {"backends": backends, "primary": primary, "runs": runs, "names": names} if backends else None
     report = result_dir / "REPORT.md"
     tmp = result_dir / "REPORT.md.tmp"
-    tmp.write_text(report_markdown(result_dir, _shown(thesis_path), sections), encoding="utf-8")
+    tmp.write_text(report_markdown(result_dir, _shown(thesis_path), sections, others, cost_models, layout),
+                   encoding="utf-8")
     tmp.replace(report)
-    return report, sections
+    return report, sections + others
+
+
+def _section(env_run, cmp, thesis, figures):
+    """What REPORT.md needs of one environment of one backend; writes its comparison (and figures)."""
+    section = {"run": env_run, "comparison": cmp, "figures": [], "skipped": [], "findings": None,
+               "correctness": []}
+    if env_run.status == "ok":
+        write_comparison(cmp)
+        if figures:
+            section["figures"], section["skipped"] = draw_figures(cmp, thesis)
+        section["findings"] = analyse(cmp, thesis)
+        section["correctness"] = correctness_rows(env_run)
+    return section
+
+
+def _union(lists):
+    """Environment names of several backend folders: the thesis' three first, then the rest in order."""
+    seen = []
+    for names in lists:
+        seen += [n for n in names if n not in seen]
+    return seen
 
 
 def _shown(path):
@@ -64,18 +110,19 @@ def _shown(path):
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
     try:
-        report, sections = run(args.result_dir, args.thesis)
+        report, sections = run(args.result_dir, args.thesis, args.primary)
     except InputError as e:
         print(f"report.py: {e}", file=sys.stderr)
         return 2
     for s in sections:
         run_ = s["run"]
+        where = f"{run_.backend}/{run_.name}" if run_.backend else run_.name
         if run_.status == "ok":
             fn = sum(r.false_negatives for r in s["correctness"])
-            print(f"{run_.name}: {len(run_.strategies)} strategies, {len(s['figures'])} figures, "
+            print(f"{where}: {len(run_.strategies)} strategies, {len(s['figures'])} figures, "
                   f"false negatives {fn}")
         else:
-            print(f"{run_.name}: {run_.status}")
+            print(f"{where}: {run_.status}")
     print(f"wrote {report}")
     if not any(s["run"].status == "ok" for s in sections):
         print(f"report.py: no environment under {args.result_dir} has results", file=sys.stderr)

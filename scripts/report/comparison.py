@@ -1,13 +1,20 @@
-"""Comparison tables: this run's average/maximum CD time beside the thesis' cell, and speedup ratios."""
+"""Comparison tables: this run's average/maximum CD time beside the thesis' cell, and speedup ratios.
+
+Averages and average ratios carry 95% bootstrap intervals over repeats (statistics.py); a maximum
+carries the repeat and frame that produced it. Maxima get no interval: a bootstrap over repeats never
+draws anything above the largest observed frame, so its interval would say less than it seems to.
+"""
 
 import csv
 import io
 from dataclasses import dataclass, field
 
-from .runs import STATISTICS, backend_of, strategy_order
+from .runs import STATISTICS, strategy_order
+from .statistics import LEVEL, RESAMPLES, SEED, mean_estimate, mean_ratio_estimate, paired, ratio_estimate
 
 REFERENCE = "ours"                         # the thesis' approach, the denominator of every speedup
-RATIO_NUMERATORS = ("cullide", "cullide_bvh")
+RATIO_NUMERATORS = ("cullide", "cullide_bvh")   # the thesis' ratios; every other strategy run follows them
+NOT_IN_THESIS = "not in the thesis"
 AXIS_UNITS = {"resolution": "frame-buffer resolution (pixels, square)", "objects": "object count"}
 
 
@@ -43,19 +50,53 @@ class Comparison:
     thesis: dict = field(default_factory=dict)    # (statistic, strategy, column) -> ms
     ratios: dict = field(default_factory=dict)    # (statistic, numerator, column) -> (ours, thesis)
     ratio_means: dict = field(default_factory=dict)  # (statistic, numerator) -> (ours, thesis)
+    numerators: list = field(default_factory=list)   # strategies divided by REFERENCE: the thesis' first
+    estimates: dict = field(default_factory=dict)    # ("average", strategy, column) -> statistics.Estimate
+    ratio_estimates: dict = field(default_factory=dict)  # ("average", numerator, column) -> Estimate
+    ratio_mean_estimates: dict = field(default_factory=dict)  # ("average", numerator) -> Estimate
+    maxima_at: dict = field(default_factory=dict)    # (strategy, column) -> (repeat, frame) of the maximum
+    thesis_strategies: set = field(default_factory=set)   # strategies with numbers anywhere in the table
 
     @property
     def ratio_rows(self):
         """Numerators with at least one ratio, in either this run or the thesis."""
-        return [n for n in RATIO_NUMERATORS
+        return [n for n in self.numerators
                 if any(self.ratios.get((s, n, c), (None, None)) != (None, None)
                        for s in STATISTICS for c in self.layout.columns)]
 
+    @property
+    def backend(self):
+        return self.run.backend_name
 
-def choose_layout(run, thesis):
+    def in_thesis(self, strategy):
+        """Whether the thesis' table has any number for this strategy, in any column (False without a table)."""
+        return strategy in self.thesis_strategies
+
+    def thesis_positions(self):
+        """[(numerator, column, thesis ratio, Estimate, 'inside'|'above'|'below'|None)] for every
+        average-ratio cell where the thesis has a value; None: no interval here (or no ratio at all)."""
+        out = []
+        for numerator in self.numerators:
+            for column in self.layout.columns:
+                theirs = self.ratios.get(("average", numerator, column), (None, None))[1]
+                if theirs is None:
+                    continue
+                est = self.ratio_estimates.get(("average", numerator, column))
+                out.append((numerator, column, theirs, est, est.position(theirs) if est else None))
+        return out
+
+
+def choose_layout(run, thesis, like=None):
+    """The columns of a run's tables; `like` (another run's Layout) imposes its axis and fixed value, so
+    that backends measured on different subsets of one sweep share columns."""
     resolutions = sorted({c.resolution for c in run.cells})
     objects = sorted({c.objects for c in run.cells})
     thesis_axis = thesis.swept_dimension(run.environment)
+    if like is not None:
+        fixed_dim = like.fixed_dimension
+        columns = sorted({getattr(c, like.axis) for c in run.cells if getattr(c, fixed_dim) == like.fixed_value})
+        candidates = objects if fixed_dim == "objects" else resolutions
+        return Layout(like.axis, columns, like.fixed_value, [v for v in candidates if v != like.fixed_value])
     if len(resolutions) > 1 and len(objects) == 1:
         axis = "resolution"
     elif len(objects) > 1 and len(resolutions) == 1:
@@ -75,10 +116,10 @@ def choose_layout(run, thesis):
     return Layout(axis, columns, fixed, [v for v in candidates if v != fixed])
 
 
-def build_comparison(run, thesis):
-    layout = choose_layout(run, thesis)
+def build_comparison(run, thesis, like=None):
+    layout = choose_layout(run, thesis, like)
     env = run.environment
-    cmp = Comparison(run, thesis.table_name(env), layout, run.strategies)
+    cmp = Comparison(run, thesis.table_name(env), layout, run.strategies, thesis_strategies=thesis.strategies(env))
     by_cell = {(c.strategy, c.resolution, c.objects): c for c in run.cells}
     for column in layout.columns:
         resolution, objects = layout.cell(column)
@@ -87,14 +128,21 @@ def build_comparison(run, thesis):
             if cell is not None:
                 cmp.ours[("average", strategy, column)] = cell.average
                 cmp.ours[("maximum", strategy, column)] = cell.maximum
+                if cell.repeat_means:
+                    cmp.estimates[("average", strategy, column)] = mean_estimate(list(cell.repeat_means.values()))
+                if cell.max_repeat is not None:
+                    cmp.maxima_at[(strategy, column)] = (cell.max_repeat, cell.max_frame)
         # The thesis' rows come in even for strategies this run left out, so its ratios stay visible.
         for strategy in strategy_order(set(cmp.strategies) | thesis.strategies(env)):
             for statistic in STATISTICS:
                 value = thesis.value(env, statistic, strategy, resolution, objects)
                 if value is not None:
                     cmp.thesis[(statistic, strategy, column)] = value
+    thesis_numerators = [n for n in RATIO_NUMERATORS if n in cmp.strategies or cmp.in_thesis(n)]
+    cmp.numerators = thesis_numerators + [s for s in cmp.strategies
+                                          if s != REFERENCE and s not in thesis_numerators]
     for statistic in STATISTICS:
-        for numerator in RATIO_NUMERATORS:
+        for numerator in cmp.numerators:
             ours_values, thesis_values = [], []
             for column in layout.columns:
                 pair = (_ratio(cmp.ours, statistic, numerator, column),
@@ -105,7 +153,27 @@ def build_comparison(run, thesis):
                 if pair[1] is not None:
                     thesis_values.append(pair[1])
             cmp.ratio_means[(statistic, numerator)] = (_mean(ours_values), _mean(thesis_values))
+    _ratio_intervals(cmp, by_cell)
     return cmp
+
+
+def _ratio_intervals(cmp, by_cell):
+    """Average ratios X/ours per column and their mean over columns, each with its paired interval."""
+    for numerator in cmp.numerators:
+        pairs = []
+        for column in cmp.layout.columns:
+            top = by_cell.get((numerator, *cmp.layout.cell(column)))
+            bottom = by_cell.get((REFERENCE, *cmp.layout.cell(column)))
+            if top is None or bottom is None or not top.repeat_means or not bottom.repeat_means:
+                continue
+            pair = paired(top.repeat_means, bottom.repeat_means)
+            est = ratio_estimate(*pair)
+            if est is not None:
+                cmp.ratio_estimates[("average", numerator, column)] = est
+                pairs.append(pair)
+        est = mean_ratio_estimate(pairs)
+        if est is not None:
+            cmp.ratio_mean_estimates[("average", numerator)] = est
 
 
 def _ratio(values, statistic, numerator, column):
@@ -128,82 +196,195 @@ def fmt_ratio(value):
     return "" if value is None else f"{value:.2f}"
 
 
-def _beside(ours, thesis, fmt):
-    """'12.30 (thesis 11.98)'; either side may be missing, and then it is simply absent."""
+def fmt_interval(est, fmt=fmt_ratio):
+    """'[1.95, 2.30]', or '' without an interval."""
+    return f"[{fmt(est.lo)}, {fmt(est.hi)}]" if est is not None and est.has_interval else ""
+
+
+def _beside(ours, thesis, fmt, interval="", position=None):
+    """'12.30 [11.9, 12.7] (thesis 11.98, inside)'; any part may be missing, and then it is simply absent."""
     if ours is None and thesis is None:
         return ""
+    text = "" if ours is None else fmt(ours) + (f" {interval}" if interval else "")
     if thesis is None:
-        return fmt(ours)
-    if ours is None:
-        return f"(thesis {fmt(thesis)})"
-    return f"{fmt(ours)} (thesis {fmt(thesis)})"
+        return text
+    theirs = f"thesis {fmt(thesis)}" + (f", {position}" if position else "")
+    return f"{text} ({theirs})" if text else f"({theirs})"
+
+
+def _uniform_reason(estimates):
+    """The one reason no estimate of a table has an interval ('no interval (1 repeat)'), else None."""
+    reasons = {e.why for e in estimates if e is not None}
+    if estimates and all(e is not None and not e.has_interval for e in estimates) and len(reasons) == 1:
+        return reasons.pop()
+    return None
+
+
+def _interval_or_reason(est, uniform):
+    if est is None:
+        return ""
+    if est.has_interval:
+        return fmt_interval(est, fmt_ms)
+    return "" if uniform else f"({est.why})"
+
+
+def not_in_thesis(cmp):
+    """Strategies of this run the thesis' table gives no numbers for (none when there is no table)."""
+    return [s for s in cmp.strategies if cmp.table and not cmp.in_thesis(s)]
+
+
+def _label(strategy, missing):
+    return f"{strategy} ({NOT_IN_THESIS})" if strategy in missing else strategy
+
+
+def _max_at(cmp, strategy, column):
+    at = cmp.maxima_at.get((strategy, column))
+    return f"@r{at[0]} f{at[1]}" if at else ""
+
+
+def intervals_note(cmp):
+    """One line on how the cells' intervals were made, or why there are none."""
+    estimates = list(cmp.estimates.values()) + list(cmp.ratio_estimates.values())
+    if not estimates:
+        return "No intervals: frames.csv is missing, so the repeats are unknown."
+    uniform = _uniform_reason(estimates)
+    if uniform:
+        return f"Averages: mean over repeats of each repeat's mean over its frames; {uniform}."
+    repeats = sorted({e.repeats for e in estimates})
+    shown = f"{repeats[0]}" if len(repeats) == 1 else f"{repeats[0]}-{repeats[-1]}"
+    return (f"Averages: mean over repeats of each repeat's mean over its frames, [{LEVEL:.0%} interval] by a "
+            f"percentile bootstrap over the {shown} repeats ({RESAMPLES} resamples, seed {SEED}; a ratio "
+            f"resamples the same repeats for both strategies). Maxima: the largest frame, @rR fF = repeat R, "
+            f"frame F; no interval.")
 
 
 def comparison_markdown(cmp, level=2):
     h = "#" * level
     lay = cmp.layout
     source = f" (Table {cmp.table} in parentheses)" if cmp.table else ""
-    out = []
+    missing = not_in_thesis(cmp)
+    out = [intervals_note(cmp), ""]
     header = f"| strategy \\ {lay.axis} | " + " | ".join(str(c) for c in lay.columns) + " |"
     rule = "|---|" + "---:|" * len(lay.columns)
+    uniform = _uniform_reason(list(cmp.estimates.values()))
     for statistic in STATISTICS:
         out.append(f"{h} {cmp.run.name}: {statistic} CD time (ms) by {AXIS_UNITS[lay.axis]}, "
-                   f"{lay.describe_fixed()}, {backend_of(cmp.run.meta)} backend{source}\n")
+                   f"{lay.describe_fixed()}, {cmp.backend} backend{source}\n")
         out.append(header)
         out.append(rule)
         for strategy in cmp.strategies:
-            cells = [_beside(cmp.ours.get((statistic, strategy, c)), cmp.thesis.get((statistic, strategy, c)),
-                             fmt_ms) for c in lay.columns]
-            out.append(f"| {strategy} | " + " | ".join(cells) + " |")
+            cells = []
+            for c in lay.columns:
+                extra = (_interval_or_reason(cmp.estimates.get((statistic, strategy, c)), uniform)
+                         if statistic == "average" else _max_at(cmp, strategy, c))
+                cells.append(_beside(cmp.ours.get((statistic, strategy, c)), cmp.thesis.get((statistic, strategy, c)),
+                                     fmt_ms, extra))
+            out.append(f"| {_label(strategy, missing)} | " + " | ".join(cells) + " |")
         for strategy in strategy_order({k[1] for k in cmp.thesis} - set(cmp.strategies)):
             cells = [_beside(None, cmp.thesis.get((statistic, strategy, c)), fmt_ms) for c in lay.columns]
             out.append(f"| {strategy} (not run) | " + " | ".join(cells) + " |")
         out.append("")
+    if missing:
+        out.append(f"Table {cmp.table} has no numbers for {', '.join(f'`{s}`' for s in missing)}: "
+                   f"{'its rows show' if len(missing) == 1 else 'their rows show'} this run alone ({NOT_IN_THESIS}).\n")
     rows = cmp.ratio_rows
     if rows:
         out.append(f"{h} {cmp.run.name}: speedup of {REFERENCE} (the named strategy's CD time divided by "
-                   f"{REFERENCE}'; above 1: {REFERENCE} is faster)\n")
+                   f"{REFERENCE}'; above 1: {REFERENCE} is faster){_position_legend(cmp)}\n")
         out.append(f"| ratio \\ {lay.axis} | " + " | ".join(str(c) for c in lay.columns) + " | mean over columns |")
         out.append("|---|" + "---:|" * (len(lay.columns) + 1))
         for statistic in STATISTICS:
             for numerator in rows:
-                cells = [_beside(*cmp.ratios[(statistic, numerator, c)], fmt_ratio) for c in lay.columns]
-                cells.append(_beside(*cmp.ratio_means[(statistic, numerator)], fmt_ratio))
-                out.append(f"| {numerator} / {REFERENCE}, {statistic} | " + " | ".join(cells) + " |")
+                cells = [_ratio_cell(cmp, statistic, numerator, c) for c in lay.columns]
+                cells.append(_ratio_cell(cmp, statistic, numerator, None))
+                label = f"{numerator} / {REFERENCE}, {statistic}" + (f" ({NOT_IN_THESIS})" if numerator in missing else "")
+                out.append(f"| {label} | " + " | ".join(cells) + " |")
         out.append("")
     elif REFERENCE not in cmp.strategies:
         out.append(f"No speedup ratios: `{REFERENCE}` is not in this run.\n")
     return "\n".join(out)
 
 
+def _position_legend(cmp):
+    if any(p is not None for *_, p in cmp.thesis_positions()):
+        return "; inside/above/below: where the thesis' ratio lies against our 95% interval"
+    return ""
+
+
+def _ratio_cell(cmp, statistic, numerator, column):
+    """One ratio cell; column None is the mean over columns."""
+    if column is None:
+        ours, theirs = cmp.ratio_means[(statistic, numerator)]
+        est = cmp.ratio_mean_estimates.get((statistic, numerator))
+    else:
+        ours, theirs = cmp.ratios[(statistic, numerator, column)]
+        est = cmp.ratio_estimates.get((statistic, numerator, column))
+    if est is not None:
+        ours = est.value
+    return _beside(ours, theirs, fmt_ratio, fmt_interval(est), est.position(theirs) if est else None)
+
+
 def comparison_csv(cmp):
-    """Wide CSV: one row per (quantity, statistic, row), a value column and a thesis column per column."""
+    """Wide CSV: one row per (quantity, statistic, row); per column its value, the thesis' value, the
+    95% interval (lo, hi), where the thesis' ratio lies against it, and for maxima the repeat and frame."""
     lay = cmp.layout
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     header = ["quantity", "statistic", "row", "axis", lay.fixed_dimension]
     for c in lay.columns:
-        header += [str(c), f"{c}_thesis"]
-    header += ["mean", "mean_thesis"]
+        header += [str(c), f"{c}_thesis", f"{c}_lo", f"{c}_hi", f"{c}_thesis_position", f"{c}_repeat", f"{c}_frame"]
+    header += ["mean", "mean_thesis", "mean_lo", "mean_hi", "mean_thesis_position", "in_thesis"]
     w.writerow(header)
 
-    def num(v, digits):
+    def num(v, digits=4):
         return "" if v is None else f"{v:.{digits}f}"
+
+    def bounds(est):
+        return [num(est.lo), num(est.hi)] if est is not None and est.has_interval else ["", ""]
 
     strategies = cmp.strategies + strategy_order({k[1] for k in cmp.thesis} - set(cmp.strategies))
     for statistic in STATISTICS:
         for strategy in strategies:
             row = ["cd_time_ms", statistic, strategy, lay.axis, lay.fixed_value]
             for c in lay.columns:
-                row += [num(cmp.ours.get((statistic, strategy, c)), 4), num(cmp.thesis.get((statistic, strategy, c)), 4)]
-            w.writerow(row + ["", ""])   # a mean of times over columns is not one of the thesis' statistics
+                at = cmp.maxima_at.get((strategy, c)) if statistic == "maximum" else None
+                row += [num(cmp.ours.get((statistic, strategy, c))), num(cmp.thesis.get((statistic, strategy, c))),
+                        *bounds(cmp.estimates.get((statistic, strategy, c))), "",
+                        "" if at is None else at[0], "" if at is None else at[1]]
+            # a mean of times over columns is not one of the thesis' statistics
+            w.writerow(row + ["", "", "", "", "", int(cmp.in_thesis(strategy))])
     for statistic in STATISTICS:
-        for numerator in RATIO_NUMERATORS:
+        for numerator in cmp.numerators:
             row = ["speedup", statistic, f"{numerator}/{REFERENCE}", lay.axis, lay.fixed_value]
             for c in lay.columns:
-                row += [num(v, 4) for v in cmp.ratios[(statistic, numerator, c)]]
-            w.writerow(row + [num(v, 4) for v in cmp.ratio_means[(statistic, numerator)]])
+                ours, theirs = cmp.ratios[(statistic, numerator, c)]
+                est = cmp.ratio_estimates.get((statistic, numerator, c))
+                row += [num(est.value if est else ours), num(theirs), *bounds(est),
+                        (est.position(theirs) or "") if est else "", "", ""]
+            ours, theirs = cmp.ratio_means[(statistic, numerator)]
+            est = cmp.ratio_mean_estimates.get((statistic, numerator))
+            w.writerow(row + [num(est.value if est else ours), num(theirs), *bounds(est),
+                              (est.position(theirs) or "") if est else "", int(cmp.in_thesis(numerator))])
     return buf.getvalue()
+
+
+def thesis_position_summary(cmp):
+    """'k of n thesis ratios inside our 95% intervals (a above, b below)' over the average-ratio cells
+    with a thesis value and an interval here; None when the thesis has no ratio for these columns."""
+    cells = cmp.thesis_positions()
+    if not cells:
+        return None
+    positions = [p for *_, p in cells if p is not None]
+    if not positions:
+        reasons = sorted({est.why for *_, est, p in cells if est is not None and est.why})
+        why = "; ".join(reasons) if reasons else "no ratio of ours in those columns"
+        return f"none of {len(cells)} thesis ratios can be placed against an interval here: {why}"
+    inside = positions.count("inside")
+    rest = [f"{positions.count(w)} {w}" for w in ("above", "below") if positions.count(w)]
+    text = f"{inside} of {len(positions)} thesis ratios inside our 95% intervals" + (f" ({', '.join(rest)})" if rest else "")
+    if len(positions) < len(cells):
+        text += f"; {len(cells) - len(positions)} more without an interval here"
+    return text
 
 
 def write_comparison(cmp):

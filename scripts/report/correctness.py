@@ -12,6 +12,7 @@ class CorrectnessRow:
     false_positives: int     # None when only tables.csv was available
     truth_pairs: int         # colliding pairs the ground truth found, summed over frames (None: unknown)
     checked: bool            # False when the run skipped the ground truth (--no-truth)
+    backend: str = ""        # the backend folder, "" when RESULT_DIR holds the environments directly
 
 
 def correctness_rows(run):
@@ -23,9 +24,9 @@ def correctness_rows(run):
             fp = sum(r["false_positives"] for r in frames) if "false_positives" in frames[0] else None
             truth = sum(r["truth_pairs"] for r in frames) if "truth_pairs" in frames[0] else None
             rows.append(CorrectnessRow(run.name, strategy, len(frames),
-                                       sum(r["false_negatives"] for r in frames), fp, truth, checked))
+                                       sum(r["false_negatives"] for r in frames), fp, truth, checked, run.backend))
         else:
             cells = [c for c in run.cells if c.strategy == strategy]
             rows.append(CorrectnessRow(run.name, strategy, sum(c.frames for c in cells),
-                                       sum(c.false_negatives for c in cells), None, None, checked))
+                                       sum(c.false_negatives for c in cells), None, None, checked, run.backend))
     return rows

@@ -4,13 +4,15 @@
 from dataclasses import dataclass
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")  # headless: the report runs where there is no display
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.patches import Rectangle  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Patch, Rectangle  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-from .runs import STATISTICS, renderer_of  # noqa: E402
+from .runs import STATISTICS, describe_backend  # noqa: E402
 from .thesis import THESIS_HARDWARE  # noqa: E402
 
 # The thesis' figure numbers per environment; another environment gets descriptive names.
@@ -22,8 +24,9 @@ FIGURE_NAMES = {
 GENERIC_NAMES = {"sweep": "cd_time_sweep", "per_frame": "cd_time_per_frame", "sets": "sets_per_frame"}
 
 # One colour per strategy in every figure, so a reader matches lines across figures at a glance.
-COLOURS = {"cullide": "tab:red", "cullide_bvh": "tab:orange", "sorted": "tab:purple", "cis": "tab:green",
-           "ours": "tab:blue", "fcl": "tab:brown", "bullet": "tab:pink", "ode": "tab:gray"}
+COLOURS = {"cullide": "tab:red", "cullide_bvh": "tab:orange", "quick_cullide": "darkred", "sorted": "tab:purple",
+           "cis": "tab:green", "ours": "tab:blue", "fcl": "tab:brown", "bullet": "tab:pink", "ode": "tab:gray",
+           "all_pairs": "black"}
 EXTRA_COLOURS = ["tab:olive", "tab:cyan", "black", "gold"]
 PER_FRAME_RESOLUTION = 800      # the thesis' per-frame figures are all at 800x800
 PAIR_STRATEGIES = ("cullide_bvh", "ours")    # Figure 4.8
@@ -96,7 +99,7 @@ def _frames_of(cmp, slice_, strategy):
 
 
 def _caption(fig, cmp, with_thesis):
-    text = f"GL renderer: {renderer_of(cmp.run.meta)}"
+    text = f"Visibility backend: {describe_backend(cmp.run.meta)}"
     cpu = cmp.run.meta.get("machine", {}).get("cpu")
     if cpu:
         text += f"; CPU: {cpu}"
@@ -174,31 +177,64 @@ def _shared_legend(fig, ax, strategies):
                bbox_to_anchor=(0.5, 0.065), frameon=False)
 
 
+def _over_repeats(cmp, slice_, strategy):
+    """(frames, mean, low, high, repeats): per frame, the mean and range of CD time over every repeat
+    of the slice's cell that measured that frame; None when fewer than two repeats measured it."""
+    resolution, objects, _ = slice_
+    rows = [r for r in cmp.run.frames if r["strategy"] == strategy and r["resolution"] == resolution
+            and r["objects"] == objects]
+    repeats = {r["repeat"] for r in rows}
+    if len(repeats) < 2:
+        return None
+    by_frame = {}
+    for r in rows:
+        by_frame.setdefault(r["frame"], []).append(r["cd_ms"])
+    frames = np.array(sorted(by_frame))
+    times = [np.asarray(by_frame[f]) for f in frames]
+    return (frames, np.array([t.mean() for t in times]), np.array([t.min() for t in times]),
+            np.array([t.max() for t in times]), len(repeats))
+
+
 def _per_frame_figure(cmp, slice_, name, strategies, heading):
+    """CD time per frame of one simulation (the slice's repeat) over every measured frame; with several
+    repeats, a dotted mean over repeats and a shaded band from the lowest to the highest repeat, so a
+    reader sees whether the drawn simulation is typical."""
     resolution, objects, repeat = slice_
     fig, ax = plt.subplots(figsize=(10, 5))
-    values, frames = [], 0
+    values, frames, repeats = [], 0, 1
     for strategy in strategies:
         rows = _frames_of(cmp, slice_, strategy)
+        c = colour(strategy, cmp.strategies)
+        spread = _over_repeats(cmp, slice_, strategy)
+        if spread is not None:
+            x, mean, low, high, repeats = spread[0], spread[1], spread[2], spread[3], max(repeats, spread[4])
+            ax.fill_between(x, low, high, color=c, alpha=0.15, linewidth=0)
+            ax.plot(x, mean, color=c, linewidth=1, linestyle=":")
+            values += list(low) + list(high)
         if rows:
             x = [r["frame"] for r in rows]
             y = [r["cd_ms"] for r in rows]
-            ax.plot(x, y, color=colour(strategy, cmp.strategies), linewidth=1,
-                    marker="o" if len(rows) <= 60 else None, markersize=3, label=strategy)
+            ax.plot(x, y, color=c, linewidth=1, marker="o" if len(rows) <= 60 else None, markersize=3,
+                    label=strategy)
             values += y
             frames = max(frames, len(rows))
     ax.set_xlabel("Frame")
     _maybe_log(ax, values, "CD time (ms)")
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))   # beside the plot: noisy lines fill it
+    handles, labels = ax.get_legend_handles_labels()
+    if repeats > 1:
+        handles += [Line2D([], [], color="gray", linestyle=":"), Patch(color="gray", alpha=0.15)]
+        labels += [f"mean over {repeats} repeats", "range over repeats"]
+    ax.legend(handles, labels, fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))   # beside: noisy lines fill it
     title = f"{cmp.run.name}: {heading}, {resolution}x{resolution} pixels, {objects} objects, repeat {repeat}"
     ax.set_title(title, fontsize=11)
     _caption(fig, cmp, False)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     _save(fig, cmp.run.folder, name)
+    over = f"; mean and range over {repeats} repeats" if repeats > 1 else ""
     return Figure(name, title, f"{heading} at {resolution}x{resolution}, {objects} objects, "
-                               f"repeat {repeat} ({frames} frames)")
+                               f"repeat {repeat} ({frames} frames){over}")
 
 
 def _sets_figure(cmp, slice_, name, strategies):

@@ -2,7 +2,7 @@
 
 from dataclasses import dataclass, field
 
-from .comparison import RATIO_NUMERATORS, REFERENCE
+from .comparison import RATIO_NUMERATORS, REFERENCE, fmt_interval, not_in_thesis
 from .runs import STATISTICS, is_software_renderer, renderer_of
 from .thesis import THESIS_HARDWARE
 
@@ -130,6 +130,12 @@ def _speedups(cmp, f):
             if len(pairs) > 1:
                 text += (f" (per column {min(o for _, o, _ in pairs):.2f}-{max(o for _, o, _ in pairs):.2f} here, "
                          f"{min(t for _, _, t in pairs):.2f}-{max(t for _, _, t in pairs):.2f} in the thesis)")
+            placed = [cmp.ratio_estimates[(statistic, numerator, c)].position(t) for c, _, t in pairs
+                      if (statistic, numerator, c) in cmp.ratio_estimates]
+            placed = [x for x in placed if x is not None]
+            if placed:
+                text += (f"; the thesis' ratio lies inside our 95% interval in {placed.count('inside')} of "
+                         f"{len(placed)} column(s)")
             if (om >= 1) != (tm >= 1):
                 who = lambda r: f"{REFERENCE} {'faster' if r >= 1 else 'slower'}"  # noqa: E731
                 f.differs.append(f"{text}. Opposite direction: {who(om)} here, {who(tm)} in the thesis.")
@@ -195,6 +201,12 @@ def _run_only(cmp, f):
         f.observations.append(f"All strategies of this run, fastest first by average CD time (mean over "
                               f"{_cols(cmp, columns)}): "
                               + " < ".join(f"{s} ({means[s]:.2f} ms)" for s in sorted(strategies, key=means.get)) + ".")
+    for s in not_in_thesis(cmp):
+        est = cmp.ratio_mean_estimates.get(("average", s))
+        if est is not None:
+            interval = fmt_interval(est) or est.why
+            f.observations.append(f"{s} is not in the thesis: its average CD time over {REFERENCE}', mean over "
+                                  f"{_cols(cmp, cmp.layout.columns)}, is {est.value:.2f} {interval} here.")
     frames = cmp.run.frames
     if not frames:
         return

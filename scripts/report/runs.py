@@ -10,7 +10,8 @@ FRAME_REQUIRED = ("environment", "strategy", "resolution", "objects", "repeat", 
                   "sets", "false_negatives")
 FRAME_INTS = ("resolution", "objects", "repeat", "frame", "pcs_size", "sets", "pcs_triangles",
               "pairs_tested", "triangle_tests", "colliding_pairs", "truth_pairs", "false_negatives",
-              "false_positives", "culling_misses", "queries", "draws", "triangles_drawn")
+              "false_positives", "culling_misses", "queries", "draws", "triangles_drawn", "pixels_tested",
+              "pixels_written")
 FRAME_TIMES = ("cd_ms", "cull_ms", "exact_ms")
 
 STATISTICS = ("average", "maximum")
@@ -19,8 +20,10 @@ TABLE_REQUIRED = ("environment", "statistic", "strategy", "resolution", "objects
 # The thesis' three environments are always listed, so that a missing one is reported, not skipped.
 THESIS_ENVIRONMENTS = ("env1", "env2", "env3")
 
-# A stable row order: the thesis' strategies in the order of its tables' narrative, then CPU peers.
-KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "sorted", "cis", "ours", "fcl", "bullet", "ode")
+# A stable row order: the thesis' strategies in the order of its tables' narrative, then CPU peers, then the
+# brute-force baseline.
+KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "quick_cullide", "sorted", "cis", "ours", "fcl", "bullet", "ode",
+                        "all_pairs")
 
 
 def strategy_order(names):
@@ -31,7 +34,9 @@ def strategy_order(names):
 
 @dataclass
 class Cell:
-    """Average and maximum CD time of one (strategy, resolution, objects) over all repeats and frames."""
+    """CD time of one (strategy, resolution, objects): the average is the mean over repeats of each
+    repeat's mean over its frames (equal frames per repeat: the plain mean); the maximum is over every
+    frame, with the repeat and frame that produced it (None when only tables.csv was read)."""
     strategy: str
     resolution: int
     objects: int
@@ -39,6 +44,13 @@ class Cell:
     maximum: float
     frames: int
     false_negatives: int
+    repeat_means: dict = field(default_factory=dict)   # repeat -> mean CD time over its frames
+    max_repeat: int = None
+    max_frame: int = None
+
+    @property
+    def repeats(self):
+        return len(self.repeat_means)
 
 
 @dataclass
@@ -46,6 +58,7 @@ class EnvironmentRun:
     name: str                     # the folder name, e.g. env1
     folder: Path
     status: str                   # "ok", "missing", "empty", "incomplete"
+    backend: str = ""             # its backend folder (RESULT_DIR/<backend>/envN); "" directly under RESULT_DIR
     environment: str = ""         # the environment column of the data (normally == name)
     frames: list = field(default_factory=list)   # frames.csv rows (dicts, typed)
     cells: list = field(default_factory=list)    # list[Cell]
@@ -60,6 +73,11 @@ class EnvironmentRun:
     def has_frames(self):
         return bool(self.frames)
 
+    @property
+    def backend_name(self):
+        """The backend folder's name, or for a folder directly under RESULT_DIR the one meta.json names."""
+        return self.backend or backend_of(self.meta)
+
 
 def discover_environments(result_dir: Path):
     """The thesis' environments plus any other env* folder present, in a stable order."""
@@ -67,9 +85,10 @@ def discover_environments(result_dir: Path):
     return list(THESIS_ENVIRONMENTS) + sorted(found - set(THESIS_ENVIRONMENTS))
 
 
-def read_environment(result_dir: Path, name: str) -> EnvironmentRun:
-    folder = result_dir / name
-    run = EnvironmentRun(name=name, folder=folder, status="ok")
+def read_environment(result_dir: Path, name: str, backend: str = "") -> EnvironmentRun:
+    """RESULT_DIR/name, or RESULT_DIR/backend/name when `backend` is given."""
+    folder = (result_dir / backend if backend else result_dir) / name
+    run = EnvironmentRun(name=name, folder=folder, status="ok", backend=backend)
     if not folder.is_dir():
         run.status = "missing"
         return run
@@ -95,6 +114,9 @@ def read_environment(result_dir: Path, name: str) -> EnvironmentRun:
         return run
     if not run.meta:
         run.notes.append("meta.json is missing: machine, GL renderer and commit unknown")
+    elif backend and backend_of(run.meta) != backend:
+        run.notes.append(f"in folder {backend}/ but meta.json names the {backend_of(run.meta)} backend; "
+                         f"reported as {backend}")
     planned = run.meta.get("config", {}).get("strategies")
     if isinstance(planned, list):
         absent = [str(p) for p in planned if p not in {c.strategy for c in run.cells}]
@@ -126,13 +148,18 @@ def _progress(folder):
 def cells_from_frames(frames):
     groups = {}
     for r in frames:
-        key = (r["strategy"], r["resolution"], r["objects"])
-        g = groups.setdefault(key, [0.0, 0.0, 0, 0])
-        g[0] += r["cd_ms"]
-        g[1] = max(g[1], r["cd_ms"])
-        g[2] += 1
-        g[3] += r["false_negatives"]
-    return [Cell(s, res, obj, total / n, peak, n, fn) for (s, res, obj), (total, peak, n, fn) in groups.items()]
+        groups.setdefault((r["strategy"], r["resolution"], r["objects"]), []).append(r)
+    cells = []
+    for (s, res, obj), rows in groups.items():
+        by_repeat = {}
+        for r in rows:
+            by_repeat.setdefault(r["repeat"], []).append(r["cd_ms"])
+        repeat_means = {k: sum(v) / len(v) for k, v in sorted(by_repeat.items())}
+        # The first frame of the earliest repeat that reaches the maximum, so the answer is stable.
+        peak = min(rows, key=lambda r: (-r["cd_ms"], r["repeat"], r["frame"]))
+        cells.append(Cell(s, res, obj, sum(repeat_means.values()) / len(repeat_means), peak["cd_ms"], len(rows),
+                          sum(r["false_negatives"] for r in rows), repeat_means, peak["repeat"], peak["frame"]))
+    return cells
 
 
 def _read_table_cells(path):

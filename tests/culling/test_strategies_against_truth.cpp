@@ -32,10 +32,12 @@ std::string sceneName(SceneKind k) {
   return "";
 }
 
-// One backend of each kind for the whole suite (GL opened once, on first need).
+// One backend of each kind for the whole suite (GL opened once, on first need). Never destroyed:
+// GL opens after these statics exist, so the driver's exit handlers would run before their
+// destructors, which would then call into an unloaded driver.
 VisibilityBackend& sharedBackend(const std::string& name) {
-  static BackendResources resources(GlPlatform::Auto);
-  static std::map<std::string, std::unique_ptr<VisibilityBackend>> backends;
+  static auto& resources = *new BackendResources(GlPlatform::Auto);
+  static auto& backends = *new std::map<std::string, std::unique_ptr<VisibilityBackend>>;
   auto& b = backends[name];
   if (!b) b = VisibilityBackendRegistry::builtin().create(name, resources, {});
   return *b;
@@ -109,8 +111,8 @@ std::vector<Param> allParams() {
   std::vector<Param> out;
   const std::string firstBackend(VisibilityBackendRegistry::kDefault);
   for (const auto& name : StrategyRegistry::builtin().names()) {
-    // The CPU peers decide the pairs themselves: no backend, no resolution enters their answer.
-    const bool peer = StrategyRegistry::builtin().isCpuPeer(name);
+    // The CPU peers and the reference draw nothing: no backend, no resolution enters their answer.
+    const bool peer = !StrategyRegistry::builtin().usesBackend(name);
     for (const auto& backend : VisibilityBackendRegistry::builtin().names()) {
       if (peer && backend != firstBackend) continue;
       for (auto kind : {SceneKind::FewTori, SceneKind::Tori, SceneKind::ToriAndPlanes, SceneKind::Dragons})

@@ -44,7 +44,11 @@ TEST(Cli, Env3RunWritesFramesTablesAndMetaWithNoFalseNegatives) {
   }
   std::ifstream metaFile(out / "meta.json");
   const auto meta = nlohmann::json::parse(metaFile);
-  EXPECT_FALSE(meta["gl"]["renderer"].get<std::string>().empty());
+  // The default backend, named in every row and in meta.json with what rendered for it.
+  for (const auto& row : rows) EXPECT_EQ(row.visibility, "cpu");
+  EXPECT_EQ(meta["visibility"]["backend"], "cpu");
+  EXPECT_FALSE(meta["visibility"]["renderer"].get<std::string>().empty());
+  EXPECT_FALSE(meta.contains("gl")) << "the cpu backend opens no GL";
   EXPECT_FALSE(meta["machine"]["git_commit"].get<std::string>().empty());
   EXPECT_EQ(meta["config"]["environment"], "env3");
 

@@ -34,7 +34,8 @@ StrategyRegistry registryWith(const std::string& target, Wrap wrap) {
           [name, target, wrap](const StrategyOptions& o) -> std::unique_ptr<CullingStrategy> {
             auto s = StrategyRegistry::builtin().create(name, o);
             return name == target ? wrap(std::move(s)) : std::move(s);
-          });
+          },
+          builtin.kind(name));
   return r;
 }
 

@@ -161,7 +161,8 @@ TEST_F(BadConfig, ResolutionAboveTheGlMaximum) {
   if (glMax >= limits::kResolution.max)
     GTEST_SKIP() << "this GL renders up to " << glMax << ": the config limit is the tighter one";
   const std::string tooBig = std::to_string(glMax + 1);
-  const auto r = run(kConfigDir + "env3.yaml", {"--objects", "3", "--resolutions", tooBig});
+  const auto r = run(kConfigDir + "env3.yaml",
+                     {"--objects", "3", "--resolutions", tooBig, "--visibility", "gl-queries"});
   expectCleanFailure(r, 2, out(), {tooBig, std::to_string(glMax)});
 }
 

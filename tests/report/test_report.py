@@ -14,6 +14,9 @@ ROOT = Path(__file__).resolve().parents[2]
 REPORT = ROOT / "scripts" / "report.py"
 THESIS = ROOT / "results" / "thesis" / "tables.csv"
 
+sys.path.insert(0, str(ROOT / "scripts"))
+from report import statistics  # noqa: E402
+
 FRAME_HEADER = ("environment,strategy,visibility,resolution,objects,repeat,frame,cd_ms,cull_ms,exact_ms,"
                 "pcs_size,sets,pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,"
                 "false_negatives,false_positives,culling_misses,queries,draws,triangles_drawn,pixels_tested,"
@@ -31,15 +34,17 @@ ENV1_BASE = {"cullide": {500: 20.0, 800: 30.0}, "cullide_bvh": {500: 12.0, 800: 
 ENV3_BASE = {"cullide": {50: 4.0, 75: 9.0}, "ours": {50: 1.0, 75: 2.0}}
 
 
-def frame_row(env, strategy, resolution, objects, repeat, frame, cd_ms, sets, false_negatives=0):
+def frame_row(env, strategy, resolution, objects, repeat, frame, cd_ms, sets, false_negatives=0, backend=None,
+              **counters):
     values = dict.fromkeys(FRAME_HEADER, 0)
-    values.update(environment=env, strategy=strategy, visibility=BACKEND[env], resolution=resolution, objects=objects, repeat=repeat,
-                  frame=frame, cd_ms=cd_ms, cull_ms=cd_ms * 0.75, exact_ms=cd_ms * 0.25, sets=sets,
-                  false_negatives=false_negatives, truth_pairs=2, colliding_pairs=2)
+    values.update(environment=env, strategy=strategy, visibility=backend or BACKEND[env], resolution=resolution,
+                  objects=objects, repeat=repeat, frame=frame, cd_ms=cd_ms, cull_ms=cd_ms * 0.75,
+                  exact_ms=cd_ms * 0.25, sets=sets, false_negatives=false_negatives, truth_pairs=2,
+                  colliding_pairs=2, **counters)
     return [values[k] for k in FRAME_HEADER]
 
 
-def write_run(folder, env, rows):
+def write_run(folder, env, rows, backend=None):
     folder.mkdir(parents=True)
     with open(folder / "frames.csv", "w", newline="") as f:
         w = csv.writer(f)
@@ -64,7 +69,7 @@ def write_run(folder, env, rows):
             "gl": {"platform": "surfaceless", "vendor": "Mesa", "renderer": RENDERER,
                    "version": "4.5 (Core Profile) Mesa 22.3.6"},
             "config": {"environment": env, "ground_truth": True}}
-    if BACKEND[env] == "cpu":
+    if (backend or BACKEND[env]) == "cpu":
         del meta["gl"]
         meta["visibility"] = {"backend": "cpu", "renderer": CPU_RENDERER, "threads": 4}
     (folder / "meta.json").write_text(json.dumps(meta, indent=2))
@@ -87,8 +92,8 @@ def env3_rows():
             for s, bases in ENV3_BASE.items() for n, base in bases.items() for frame in range(3)]
 
 
-def run_report(result_dir):
-    return subprocess.run([sys.executable, str(REPORT), str(result_dir), "--thesis", str(THESIS)],
+def run_report(result_dir, *options):
+    return subprocess.run([sys.executable, str(REPORT), str(result_dir), "--thesis", str(THESIS), *options],
                           capture_output=True, text=True, timeout=300)
 
 
@@ -152,8 +157,13 @@ class ReportOnSyntheticRuns(unittest.TestCase):
 
     def test_env1_markdown_places_thesis_beside_ours(self):
         md = (self.dir / "env1" / "comparison.md").read_text()
-        self.assertIn("| cullide | 22.25 (thesis 10.44) | 32.25 (thesis 11.98) |", md)
-        self.assertIn(f"{22.25 / 7.25:.2f} (thesis {10.4387 / 4.984:.2f})", md)
+        # Repeat means 21.5 and 23.0 (cullide at 500): two repeats, so the interval spans exactly them.
+        self.assertIn("| cullide | 22.25 [21.50, 23.00] (thesis 10.44) | 32.25 [31.50, 33.00] (thesis 11.98) |", md)
+        self.assertIn(f"{22.25 / 7.25:.2f} [", md)
+        self.assertIn(f"(thesis {10.4387 / 4.984:.2f}, below)", md)
+        # Maxima name the repeat and frame that produced them (repeat 1, frame 3: base + 2 * 3).
+        self.assertIn("| ours | 11.00 @r1 f3 (thesis 27.81) | 14.00 @r1 f3 (thesis 25.86) |", md)
+        self.assertIn("| cis (not in the thesis) | 11.25 [10.50, 12.00] | 13.25 [12.50, 14.00] |", md)
 
     def test_tables_and_report_name_the_visibility_backend(self):
         self.assertIn("average CD time (ms) by frame-buffer resolution (pixels, square), 50 objects, cpu backend",
@@ -173,6 +183,13 @@ class ReportOnSyntheticRuns(unittest.TestCase):
         bvh = rows[("speedup", "average", "cullide_bvh/ours")]
         self.assertEqual(bvh["50"], "")
         self.assertAlmostEqual(float(bvh["50_thesis"]), 2.8114 / 0.8566, places=3)
+
+    def test_one_repeat_has_no_interval(self):
+        md = (self.dir / "env3" / "comparison.md").read_text()
+        self.assertIn("no interval (1 repeat)", md)
+        self.assertIn("| cullide | 5.00 (thesis", md)
+        rows = read_csv_rows(self.dir / "env3" / "comparison.csv")
+        self.assertEqual(rows[("cd_time_ms", "average", "cullide")]["50_lo"], "")
 
     def test_every_figure_is_a_real_png(self):
         expected = {"env1": ["fig_4_2", "fig_4_3", "fig_4_4"], "env3": ["fig_4_11", "fig_4_12", "fig_4_13"]}
@@ -207,6 +224,184 @@ class ReportOnSyntheticRuns(unittest.TestCase):
         differs = self.report[self.report.index("Differs:"):]
         self.assertTrue(expected in differs, expected)
         self.assertTrue("ours (8.75 ms) < cullide_bvh (16.25 ms) < cullide (27.25 ms)" in self.report)
+
+
+class BootstrapOverRepeats(unittest.TestCase):
+    """statistics.py on per-repeat means whose mean and spread are known exactly."""
+
+    def test_interval_contains_the_true_mean_and_has_the_standard_errors_width(self):
+        # Ten repeats at 9 and 11 alternately: mean 10, standard deviation 1, standard error 1/sqrt(10),
+        # so a 95% interval is about 2 * 1.96 / sqrt(10) = 1.24 wide and symmetric about 10.
+        est = statistics.mean_estimate([9.0, 11.0] * 5)
+        self.assertAlmostEqual(est.value, 10.0)
+        self.assertTrue(est.has_interval)
+        self.assertEqual(est.position(10.0), "inside")
+        self.assertGreater(est.hi - est.lo, 0.8)
+        self.assertLess(est.hi - est.lo, 1.6)
+        self.assertAlmostEqual(10.0 - est.lo, est.hi - 10.0, delta=0.25)
+        # Ten times the spread: ten times the width (the same resamples); four times the repeats: half.
+        wide = statistics.mean_estimate([0.0, 20.0] * 5)
+        self.assertAlmostEqual(wide.hi - wide.lo, 10 * (est.hi - est.lo), places=6)
+        many = statistics.mean_estimate([9.0, 11.0] * 20)
+        self.assertGreater((many.hi - many.lo) / (est.hi - est.lo), 0.35)
+        self.assertLess((many.hi - many.lo) / (est.hi - est.lo), 0.65)
+        self.assertEqual(est.position(12.0), "above")
+        self.assertEqual(est.position(8.0), "below")
+
+    def test_constant_repeats_give_a_point_interval_and_reruns_the_same_interval(self):
+        est = statistics.mean_estimate([4.0] * 6)
+        self.assertEqual((est.lo, est.hi), (4.0, 4.0))
+        self.assertEqual(statistics.mean_estimate([1.0, 5.0, 2.0, 8.0]), statistics.mean_estimate([1.0, 5.0, 2.0, 8.0]))
+
+    def test_one_repeat_has_no_interval(self):
+        est = statistics.mean_estimate([7.5])
+        self.assertFalse(est.has_interval)
+        self.assertEqual(est.why, "no interval (1 repeat)")
+        self.assertIsNone(est.position(7.5))
+        self.assertFalse(statistics.ratio_estimate([3.0], [1.0]).has_interval)
+
+    def test_paired_ratio_keeps_what_the_repeats_share_out_of_the_spread(self):
+        # The denominator's repeats vary tenfold, the numerator is exactly twice each: paired, the ratio is
+        # 2 in every resample; resampled independently it would spread far.
+        bottom = [1.0, 10.0, 2.0, 8.0, 5.0, 3.0]
+        est = statistics.ratio_estimate([2 * b for b in bottom], bottom)
+        self.assertAlmostEqual(est.value, 2.0)
+        self.assertAlmostEqual(est.lo, 2.0)
+        self.assertAlmostEqual(est.hi, 2.0)
+        self.assertEqual(statistics.paired({0: 1.0, 1: 2.0, 3: 4.0}, {1: 5.0, 3: 6.0, 4: 7.0}), ([2.0, 4.0], [5.0, 6.0]))
+
+
+# Two backends (RESULT_DIR/cpu/env1, RESULT_DIR/gl-queries/env1 and /env3). Eight repeats, frames 0..2.
+# A repeat's CD time is base * (1 + 0.1 * s[r]) for cullide, cullide_bvh, quick_cullide and all_pairs and
+# base * (1 + 0.1 * t[r]) for ours; s and t sum to zero, so each cell's average is exactly its base.
+S_NOISE = (1, -1, 1, -1, 1, -1, 1, -1)
+T_NOISE = (1, 1, -1, -1, 1, 1, -1, -1)
+REPEATS = len(S_NOISE)
+THESIS_AVG = {"cullide": {500: 10.4387, 600: 9.4688, 700: 11.2566, 800: 11.9801},
+              "ours": {500: 4.984, 600: 4.3461, 700: 5.258, 800: 6.4132}}
+# cpu: cullide and ours at the thesis' averages (its cullide/ours inside our intervals), cullide_bvh at half
+# of cullide (faster than cullide; bvh/ours about 1.05, far below the thesis' 1.5-1.8).
+CPU_BASE = {"cullide": THESIS_AVG["cullide"], "cullide_bvh": {k: v / 2 for k, v in THESIS_AVG["cullide"].items()},
+            "quick_cullide": {k: v * 0.8 for k, v in THESIS_AVG["cullide"].items()},
+            "all_pairs": {k: 30.0 for k in THESIS_AVG["cullide"]}, "ours": THESIS_AVG["ours"]}
+# gl-queries, run on a subset (500 and 800 only, no quick_cullide or all_pairs): ours 1.5 times the thesis'
+# (cullide/ours 1.40 and 1.25, the thesis' above), cullide_bvh 1.5 times cullide: slower than cullide, the
+# reverse of cpu, and bvh/ours at the thesis' cullide/ours (2.09, 1.87; the thesis' bvh/ours below).
+GLQ_BASE = {"cullide": {k: THESIS_AVG["cullide"][k] for k in (500, 800)},
+            "cullide_bvh": {k: THESIS_AVG["cullide"][k] * 1.5 for k in (500, 800)},
+            "ours": {k: THESIS_AVG["ours"][k] * 1.5 for k in (500, 800)}}
+SPIKE = ("all_pairs", 700, 5, 2, 999.0)      # strategy, resolution, repeat, frame, CD time
+COUNTERS = {"cpu": {"queries": 0, "pixels_tested": 1000}, "gl-queries": {"queries": 50, "pixels_tested": 0}}
+
+
+def backend_rows(backend, bases):
+    rows = []
+    for s, by_res in bases.items():
+        for res, base in by_res.items():
+            for r in range(REPEATS):
+                noise = T_NOISE[r] if s == "ours" else S_NOISE[r]
+                for frame in range(3):
+                    cd = base * (1 + 0.1 * noise) + 0.1 * (frame - 1)      # frame terms cancel in the mean
+                    if SPIKE[:4] == (s, res, r, frame):
+                        cd = SPIKE[4]
+                    rows.append(frame_row("env1", s, res, 50, r, frame, cd, 2, backend=backend,
+                                          pairs_tested=7, **COUNTERS[backend]))
+    return rows
+
+
+class ReportOnBackendFolders(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = Path(tempfile.mkdtemp(prefix="cdbench-report-backends-"))
+        cls.dir = cls.tmp / "results"
+        write_run(cls.dir / "cpu" / "env1", "env1", backend_rows("cpu", CPU_BASE), backend="cpu")
+        write_run(cls.dir / "gl-queries" / "env1", "env1", backend_rows("gl-queries", GLQ_BASE), backend="gl-queries")
+        write_run(cls.dir / "gl-queries" / "env3", "env3", env3_rows(), backend="gl-queries")
+        cls.result = run_report(cls.dir)
+        cls.report = (cls.dir / "REPORT.md").read_text() if (cls.dir / "REPORT.md").exists() else ""
+        start = cls.report.find("## What depends on the cost model")
+        cls.cost = cls.report[start:] if start >= 0 else ""
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_exits_zero_and_writes_report_at_the_top(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stderr)
+        self.assertFalse((self.dir / "cpu" / "REPORT.md").exists())
+        self.assertIn("Primary backend (the tables, figures and comparison with the thesis below): **cpu**", self.report)
+
+    def test_primary_gets_figures_and_every_backend_its_comparison(self):
+        self.assertTrue((self.dir / "cpu" / "env1" / "fig_4_3.png").is_file())
+        self.assertFalse((self.dir / "gl-queries" / "env1" / "fig_4_3.png").exists())
+        self.assertTrue((self.dir / "gl-queries" / "env1" / "comparison.csv").is_file())
+        self.assertIn("](cpu/env1/fig_4_2.png)", self.report)
+
+    def test_cell_averages_intervals_and_maximum_location(self):
+        rows = read_csv_rows(self.dir / "cpu" / "env1" / "comparison.csv")
+        avg = rows[("cd_time_ms", "average", "cullide")]
+        self.assertAlmostEqual(float(avg["500"]), 10.4387, places=4)
+        self.assertLess(float(avg["500_lo"]), 10.4387)
+        self.assertGreater(float(avg["500_hi"]), 10.4387)
+        mx = rows[("cd_time_ms", "maximum", "all_pairs")]
+        self.assertAlmostEqual(float(mx["700"]), 999.0, places=4)
+        self.assertEqual((mx["700_repeat"], mx["700_frame"]), ("5", "2"))
+        self.assertIn("999.00 @r5 f2", (self.dir / "cpu" / "env1" / "comparison.md").read_text())
+
+    def test_thesis_ratios_inside_or_outside_our_intervals(self):
+        rows = read_csv_rows(self.dir / "cpu" / "env1" / "comparison.csv")
+        ratio = rows[("speedup", "average", "cullide/ours")]
+        self.assertAlmostEqual(float(ratio["500"]), 10.4387 / 4.984, places=4)
+        self.assertEqual([ratio[f"{c}_thesis_position"] for c in (500, 600, 700, 800)], ["inside"] * 4)
+        bvh = rows[("speedup", "average", "cullide_bvh/ours")]
+        self.assertEqual([bvh[f"{c}_thesis_position"] for c in (500, 600, 700, 800)], ["above"] * 4)
+        self.assertIn("env1: 4 of 8 thesis ratios inside our 95% intervals (4 above).", self.report)
+        self.assertIn("cpu: 4 of 8 thesis ratios inside our 95% intervals (4 above); "
+                      "gl-queries: 0 of 4 thesis ratios inside our 95% intervals (2 above, 2 below).", self.cost)
+
+    def test_strategies_without_thesis_numbers_say_so(self):
+        md = (self.dir / "cpu" / "env1" / "comparison.md").read_text()
+        self.assertIn("| quick_cullide (not in the thesis) | 8.35 [", md)
+        self.assertIn("| all_pairs (not in the thesis) |", md)
+        self.assertIn("| quick_cullide / ours, average (not in the thesis) |", md)
+        rows = read_csv_rows(self.dir / "cpu" / "env1" / "comparison.csv")
+        self.assertEqual(rows[("speedup", "average", "all_pairs/ours")]["500_thesis"], "")
+        self.assertEqual(rows[("speedup", "average", "all_pairs/ours")]["in_thesis"], "0")
+
+    def test_cost_model_names_the_reversed_ordering(self):
+        self.assertIn("- cullide is slower than cullide_bvh on cpu at 4 of 4 resolutions (4 with the 95% interval "
+                      "of the ratio clear of 1); faster on gl-queries at 2 of 2 resolutions (2 with the 95% "
+                      "interval of the ratio clear of 1).", self.cost)
+        self.assertIn("cullide/ours: the 95% intervals on cpu and gl-queries do not overlap at 2 of 2 resolution "
+                      "column(s)", self.cost)
+        # Holds everywhere: ours beats cullide on both (cpu 4 of 4, gl-queries 2 of 2).
+        self.assertIn("cullide is slower than ours on every backend that measured both (cpu 4 of 4, "
+                      "gl-queries 2 of 2 resolutions); columns where the 95% interval of cullide/ours is clear of 1: "
+                      "cpu 4 of 4, gl-queries 2 of 2.", self.cost)
+        self.assertIn("| cullide / ours | thesis | 2.09 | 2.18 | 2.14 | 1.87 |", self.cost)
+        self.assertRegex(self.cost, r"\| cullide_bvh / ours \| gl-queries \| 2\.09 \[[0-9., ]+\] \| not run \| "
+                                    r"not run \| 1\.87 \[")
+        # On cpu cullide_bvh/ours is 0.93-1.09, every interval spans 1: the ordering holds, but not clearly.
+        self.assertIn("cullide_bvh is slower than ours on every backend that measured both (cpu 3 of 4, "
+                      "gl-queries 2 of 2 resolutions); columns where the 95% interval of cullide_bvh/ours is "
+                      "clear of 1: cpu 0 of 4, gl-queries 2 of 2.", self.cost)
+
+    def test_cost_model_says_what_a_backend_lacks(self):
+        self.assertIn("- gl-queries: no quick_cullide, all_pairs; no resolution 600, 700 (measured on another "
+                      "backend).", self.cost)
+        self.assertIn("Not reported on cpu: no folder: this environment was not run. Measured on gl-queries",
+                      self.report)
+        self.assertIn("Measured on gl-queries only: nothing to set beside it.", self.cost)
+
+    def test_counters_that_differ_between_backends(self):
+        self.assertIn("| queries | cullide | 48 | 0.0 | 50.0 |", self.cost)
+        self.assertIn("| pixels_tested | ours | 48 | 1000.0 | 0.0 |", self.cost)
+        self.assertIn("- pairs_tested: equal on cpu, gl-queries for cullide, cullide_bvh, ours.", self.cost)
+
+    def test_primary_option(self):
+        result = run_report(self.dir, "--primary", "gl-flags")
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn("--primary gl-flags: no such backend folder; found: cpu, gl-queries", result.stderr)
 
 
 class ReportOnBadInput(unittest.TestCase):

@@ -298,7 +298,7 @@ TEST_P(ConservativeContact, StillSeparatesPairsWithAClearGap) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ConservativeContact, testing::ValuesIn(test::registeredBackends()),
-                         [](const auto& info) { return test::testNamePart(info.param); });
+                         [](const auto& param) { return test::testNamePart(param.param); });
 
 }  // namespace
 }  // namespace cdb

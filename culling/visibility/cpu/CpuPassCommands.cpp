@@ -1,0 +1,163 @@
+#include "culling/visibility/cpu/CpuPassCommands.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <span>
+
+namespace cdb {
+
+namespace {
+
+// Triangles go to the rasteriser in chunks: the transform loop stays simple and the dispatch
+// cost is shared.
+constexpr std::size_t kChunk = 64;
+
+inline void toScreen(const ScreenMatrix& m, const Eigen::Vector3f& v, ScreenTriangle& t, int i) {
+  const Eigen::Vector3d p = m.leftCols<3>() * v.cast<double>() + m.col(3);
+  t.x[i] = p.x(), t.y[i] = p.y(), t.k[i] = p.z();
+}
+
+// The unit cube [-1, 1]^3 (corner i has x, y, z = bits 0, 1, 2) as two triangles per face;
+// faces in the order -x, +x, -y, +y, -z, +z.
+constexpr std::array<std::array<int, 6>, 6> kCubeFaces = {{
+    {0, 2, 6, 0, 6, 4}, {1, 5, 7, 1, 7, 3}, {0, 4, 5, 0, 5, 1},
+    {2, 3, 7, 2, 7, 6}, {0, 1, 3, 0, 3, 2}, {4, 6, 7, 4, 7, 5}}};
+
+// The triangles of a box that decide its answer. A box is convex: along any line of sight the
+// faces facing away from the viewer are farthest and those facing it nearest, and each set covers
+// the box's whole outline. So in every pixel the farthest depth of the box over the part of the
+// square it covers is reached on a back face (what a test needs), the nearest on a front face (a
+// write): the other faces change nothing. Faces seen edge-on (key not changing along their
+// normal) belong to both sets.
+std::size_t boxTriangles(const ScreenMatrix& cubeToScreen, CpuCommand::Role role,
+                         ScreenTriangle* out) {
+  std::array<Eigen::Vector3d, 8> corner;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d c((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
+    corner[i] = cubeToScreen.leftCols<3>() * c + cubeToScreen.col(3);
+  }
+  const bool test = role == CpuCommand::Role::Test;
+  std::size_t n = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    // How the key changes going out through the + face of this axis.
+    const double outward = cubeToScreen(2, axis);
+    for (int positive = 0; positive < 2; ++positive) {
+      const double away = positive ? outward : -outward;  // > 0: the face looks away (back)
+      const bool keep = away == 0.0 || (test ? away > 0.0 : away < 0.0);
+      if (!keep) continue;
+      const auto& face = kCubeFaces[2 * axis + positive];
+      for (int t = 0; t < 2; ++t, ++n)
+        for (int v = 0; v < 3; ++v) {
+          const Eigen::Vector3d& p = corner[face[3 * t + v]];
+          out[n].x[v] = p.x(), out[n].y[v] = p.y(), out[n].k[v] = p.z();
+        }
+    }
+  }
+  return n;
+}
+
+// Whether a triangle of a closed mesh can decide its command. Along every line of sight a closed
+// surface is crossed as often toward the viewer as away from it (its winding number is 0 far
+// away), so behind each crossing of a face turned toward the viewer lies one of a face turned away,
+// at the same screen point: in every pixel square, the farthest depth of the mesh over what it
+// covers is reached on a face turned away (what a test needs) and the nearest on one turned
+// toward the viewer (a write). Faces near edge-on (or collapsed) are kept for both. The screen
+// frame (x, y, key) is right-handed, so a counter-clockwise triangle in x, y faces along +key.
+inline bool drawnForRole(const ScreenTriangle& t, std::int8_t winding, CpuCommand::Role role) {
+  if (winding == 0) return true;
+  const double e1x = t.x[1] - t.x[0], e1y = t.y[1] - t.y[0];
+  const double e2x = t.x[2] - t.x[0], e2y = t.y[2] - t.y[0];
+  const double facing = winding * (e1x * e2y - e1y * e2x);  // > 0: turned away from the viewer
+  // Far above double's rounding of the screen coordinates (2^-50 relative).
+  const double edgeOn = 1e-9 * (std::abs(e1x) + std::abs(e1y)) * (std::abs(e2x) + std::abs(e2y));
+  return role == CpuCommand::Role::Test ? facing >= -edgeOn : facing <= edgeOn;
+}
+
+// Screen triangles of the command's mesh triangles [done, done + kChunk) that it draws; returns
+// how many, and advances `done` past those read.
+std::size_t fillChunk(const CpuCommandList& list, const CpuCommand& c, std::uint32_t& done,
+                      std::array<ScreenTriangle, kChunk>& chunk) {
+  const Mesh& mesh = *c.mesh;
+  const std::uint32_t n = std::min<std::uint32_t>(kChunk, c.count - done);
+  std::size_t kept = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t tri = c.source == CpuCommand::Source::Range
+                                  ? c.first + done + i
+                                  : list.listed[c.first + done + i];
+    const Triangle& t = mesh.triangles[tri];
+    for (int v = 0; v < 3; ++v) toScreen(c.toScreen, mesh.vertices[t[v]], chunk[kept], v);
+    if (drawnForRole(chunk[kept], c.winding, c.role)) ++kept;
+  }
+  done += n;
+  return kept;
+}
+
+ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box) {
+  ScreenMatrix m;
+  m.leftCols<3>() = objectToScreen.leftCols<3>() * box.axes * box.halfExtents.asDiagonal();
+  m.col(3) = objectToScreen.leftCols<3>() * box.center + objectToScreen.col(3);
+  return m;
+}
+
+void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandList& list,
+             const CpuCommand& c, std::uint8_t* answers, RasterWork& work) {
+  std::array<ScreenTriangle, kChunk> chunk;
+  if (c.source == CpuCommand::Source::Boxes) {
+    for (std::uint32_t b = 0; b < c.count; ++b) {
+      const std::size_t n =
+          boxTriangles(cubeToScreen(c.toScreen, list.boxes[c.first + b]), c.role, chunk.data());
+      const std::span<const ScreenTriangle> tris(chunk.data(), n);
+      if (testTrianglesUntilOccluded(buffer, raster, tris, work) < n) {
+        answers[c.query + (c.answerEach ? b : 0)] = 0;
+        if (!c.answerEach) return;
+      }
+    }
+    return;
+  }
+  for (std::uint32_t done = 0; done < c.count;) {
+    const std::uint32_t at = done;
+    const std::size_t n = fillChunk(list, c, done, chunk);
+    const std::span<const ScreenTriangle> tris(chunk.data(), n);
+    if (c.answerEach) {
+      // Every triangle is kept (winding is 0 for batches): entry i answers triangle at + i.
+      testEachTriangle(buffer, raster, tris, answers + c.query + at, work);
+    } else if (testTrianglesUntilOccluded(buffer, raster, tris, work) < n) {
+      answers[c.query] = 0;
+      return;  // one occluded sample decides the piece
+    }
+  }
+}
+
+void runWrite(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandList& list,
+              const CpuCommand& c, RasterWork& work) {
+  std::array<ScreenTriangle, kChunk> chunk;
+  if (c.source == CpuCommand::Source::Boxes) {
+    for (std::uint32_t b = 0; b < c.count; ++b) {
+      const std::size_t n =
+          boxTriangles(cubeToScreen(c.toScreen, list.boxes[c.first + b]), c.role, chunk.data());
+      writeTriangles(buffer, raster, std::span<const ScreenTriangle>(chunk.data(), n), work);
+    }
+    return;
+  }
+  for (std::uint32_t done = 0; done < c.count;) {
+    const std::size_t n = fillChunk(list, c, done, chunk);
+    writeTriangles(buffer, raster, std::span<const ScreenTriangle>(chunk.data(), n), work);
+  }
+}
+
+}  // namespace
+
+void runPass(CpuDepthBuffer& buffer, const CpuPass& pass, const CpuCommandList& list,
+             std::uint8_t* answers, RasterWork& work) {
+  if (pass.clears) buffer.clear(pass.clearValue);
+  for (std::uint32_t i = pass.firstCommand; i < pass.endCommand; ++i) {
+    const CpuCommand& c = list.commands[i];
+    if (c.role == CpuCommand::Role::Test)
+      runTest(buffer, pass.raster, list, c, answers, work);
+    else
+      runWrite(buffer, pass.raster, list, c, work);
+  }
+}
+
+}  // namespace cdb

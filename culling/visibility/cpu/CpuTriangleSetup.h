@@ -1,0 +1,272 @@
+#pragma once
+// Triangle set-up of the CPU depth rasteriser: from a triangle in the pass' screen space to the
+// per-pixel coverage and depth functions the SIMD loops evaluate (CpuRasteriser), for the
+// conservative mode (every pixel whose closed square the triangle meets; the triangle's farthest
+// depth there for a test, its nearest for a write) and for raw mode (pixel centres, as GL).
+//
+// Everything here is computed in double and rounded once to float for the loops; the bounds on the
+// rounding of those float evaluations are added so that rounding can only add pixels and only
+// move depths toward "occluded". Header-only so that every SIMD target inlines it.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace cdb {
+
+// A triangle of the pass: x, y in pixels of the depth buffer (pixel (i, j) is the square
+// [i, i + 1] x [j, j + 1]), k its depth key.
+struct ScreenTriangle {
+  double x[3];
+  double y[3];
+  double k[3];
+};
+
+// Depth keys are stored depths times `sign` (+1, or -1 in a reversed pass): a smaller key is
+// nearer in both depth orders, so "occluded" is key >= stored key and a write keeps the smaller.
+struct RasterPass {
+  int resolution = 0;
+  float sign = 1.f;
+  // The pass' part of the depth range, in keys: GL_DEPTH_CLAMP clamps every depth into it.
+  float keyLo = 0.f;
+  float keyHi = 1.f;
+  // DepthPassSetup::depthEpsilon, in keys (= stored-depth units).
+  double depthEpsilon = 0.0;
+  // Conservative mode: how far a screen position may be off from the exact one (double rounding
+  // of the vertex transforms), in pixels; pixel squares are grown by it.
+  double marginPx = 0.0;
+  // Raw mode: what tests add to their key (VisibilityOptions::rawDepthOffset in keys).
+  double rawTestOffset = 0.0;
+  bool conservative = true;
+};
+
+enum class RasterRole { Test, Write };
+
+// What the loops evaluate. Pixel (x0 + dx, y0 + dy) is covered when, for each edge e,
+// lo[e] <= a[e] dx + b[e] dy + c[e] <= hi[e]; its key is min(max(za dx + zb dy + zc, zLo), zHi).
+struct TriangleRaster {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // pixel bounding box, inclusive, clipped to the buffer
+  float a[3] = {}, b[3] = {}, c[3] = {};
+  float lo[3] = {}, hi[3] = {};
+  float za = 0.f, zb = 0.f, zc = 0.f;
+  float zLo = 0.f, zHi = 0.f;
+};
+
+namespace raster_detail {
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The next float above (below) a finite f, by its bits (std::nextafter is a library call, and
+// this runs a few times per triangle).
+inline float nextUp(float f) {
+  if (f == 0.f) return std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.f ? bits + 1u : bits - 1u);
+}
+inline float nextDown(float f) { return -nextUp(-f); }
+
+// The float nearest to v that is not below (above) it; infinities stay as they are.
+inline float roundUp(double v) {
+  const float f = static_cast<float>(v);
+  if (!(static_cast<double>(f) < v)) return f;
+  return std::isfinite(f) ? nextUp(f) : std::numeric_limits<float>::lowest();
+}
+inline float roundDown(double v) {
+  const float f = static_cast<float>(v);
+  if (!(static_cast<double>(f) > v)) return f;
+  return std::isfinite(f) ? nextDown(f) : std::numeric_limits<float>::max();
+}
+
+// Bound on the error of evaluating a dx + b dy + c in float (a, b, c rounded to float, two or
+// three fused multiply-adds) relative to the exact value, as a fraction of |a| W + |b| H + |c|
+// over the evaluated pixels: about six roundings of 2^-24 each, with room to spare. It also
+// covers the double rounding of the set-up itself (2^-52 relative).
+inline constexpr double kFloatEvalError = 1.0 / (1 << 20);  // 2^-20
+// The same for depths, whose magnitudes are about 1 (a key): tighter, so that it does not dwarf
+// the depth epsilon; five roundings of 2^-24.
+inline constexpr double kFloatDepthError = 1.0 / (1 << 21);  // 2^-21
+
+inline bool allFinite(const ScreenTriangle& t) {
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(t.x[i]) || !std::isfinite(t.y[i]) || !std::isfinite(t.k[i])) return false;
+  return true;
+}
+
+}  // namespace raster_detail
+
+// Set-up runs in two steps, so that a triangle whose tiles already decide it (a test nearer than
+// everything stored under its box, a write behind it) costs only the first. Both are forced inline
+// into the SIMD loops' targets (CpuRasteriser), which compile them with the target's instructions.
+#define CDB_RASTER_INLINE [[gnu::always_inline]] inline
+
+// Step 1: the pixel box and the key bounds r.zLo, r.zHi. False when the triangle covers no pixel
+// of the buffer (off-screen, or a non-finite vertex, or in raw mode a zero-area triangle, which GL
+// does not rasterise either).
+CDB_RASTER_INLINE bool setupBounds(const ScreenTriangle& t, const RasterPass& pass, RasterRole role,
+                                   TriangleRaster& r) {
+  using namespace raster_detail;
+  if (!allFinite(t)) return false;
+  const bool conservative = pass.conservative;
+  const double m = conservative ? pass.marginPx : 0.0;
+  const double minX = std::min({t.x[0], t.x[1], t.x[2]}), maxX = std::max({t.x[0], t.x[1], t.x[2]});
+  const double minY = std::min({t.y[0], t.y[1], t.y[2]}), maxY = std::max({t.y[0], t.y[1], t.y[2]});
+  // Conservative: pixel i's grown square [i - m, i + 1 + m] meets [minX, maxX] exactly for
+  // i in [ceil(minX - m) - 1, floor(maxX + m)] (a triangle touching a pixel border at a vertex
+  // covers both pixels). Raw: the centre i + 1/2 lies in [minX, maxX].
+  const double lowShift = conservative ? -m : -0.5, highShift = conservative ? m : -0.5;
+  double bx0 = std::ceil(minX + lowShift) - (conservative ? 1.0 : 0.0);
+  double by0 = std::ceil(minY + lowShift) - (conservative ? 1.0 : 0.0);
+  double bx1 = std::floor(maxX + highShift), by1 = std::floor(maxY + highShift);
+  const double last = pass.resolution - 1;
+  bx0 = std::max(bx0, 0.0), by0 = std::max(by0, 0.0);
+  bx1 = std::min(bx1, last), by1 = std::min(by1, last);
+  if (bx0 > bx1 || by0 > by1) return false;
+  if (!conservative) {
+    const double det =
+        (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
+    if (det == 0.0) return false;
+  }
+  r.x0 = static_cast<int>(bx0), r.y0 = static_cast<int>(by0);
+  r.x1 = static_cast<int>(bx1), r.y1 = static_cast<int>(by1);
+
+  // The key over the triangle lies within its vertex keys [kMin, kMax] (it is their convex
+  // hull); then the depth epsilon toward "occluded" (conservative) or the raw offset (tests).
+  const double kMin = std::min({t.k[0], t.k[1], t.k[2]}), kMax = std::max({t.k[0], t.k[1], t.k[2]});
+  const bool test = role == RasterRole::Test;
+  const double shift = conservative ? (test ? pass.depthEpsilon : -pass.depthEpsilon)
+                                    : (test ? pass.rawTestOffset : 0.0);
+  // Depth clamping (GL_DEPTH_CLAMP) of a value clamped to [lo, hi] is the value clamped to the
+  // clamped bounds.
+  const auto clampToPass = [&](float v) { return std::clamp(v, pass.keyLo, pass.keyHi); };
+  if (test)
+    r.zLo = clampToPass(roundUp(kMin + shift)), r.zHi = clampToPass(roundUp(kMax + shift));
+  else
+    r.zLo = clampToPass(roundDown(kMin + shift)), r.zHi = clampToPass(roundDown(kMax + shift));
+  return true;
+}
+
+// Small triangles (conservative mode only): when the pixel box of step 1 is at most
+// kSmallBox x kSmallBox pixels, the loops skip step 2 and treat every pixel of the box as covered
+// with the key bound of step 1 (r.zLo for a write, r.zHi for a test). The box holds every pixel
+// the triangle meets and the bound is at least as far (test) or near (write) as the exact one at
+// any of them, so this stays conservative: it can only add pixels and move keys toward
+// "occluded". A triangle this small covers most of its box anyway.
+inline constexpr int kSmallBox = 3;
+[[nodiscard]] inline bool smallBox(const RasterPass& pass, const TriangleRaster& r) {
+  return pass.conservative && r.x1 - r.x0 < kSmallBox && r.y1 - r.y0 < kSmallBox;
+}
+
+// Step 2: edge functions and the depth plane, for a triangle step 1 accepted.
+CDB_RASTER_INLINE void setupCoverage(const ScreenTriangle& t, const RasterPass& pass,
+                                     RasterRole role, TriangleRaster& r) {
+  using namespace raster_detail;
+  const bool conservative = pass.conservative;
+  const double m = conservative ? pass.marginPx : 0.0;
+  const double ox = r.x0, oy = r.y0;
+  // Pixels and SIMD lanes evaluated lie within the box grown by a tile (lanes past the box are
+  // masked, but their values are computed): the extent the float error bounds use.
+  const double spanX = r.x1 - r.x0 + 8.0, spanY = r.y1 - r.y0 + 8.0;
+
+  const double e1x = t.x[1] - t.x[0], e1y = t.y[1] - t.y[0];
+  const double e2x = t.x[2] - t.x[0], e2y = t.y[2] - t.y[0];
+  const double det = e1x * e2y - e1y * e2x;
+
+  // Coverage.
+  if (conservative) {
+    // Separating axes of a triangle and a square: the square's two axes (the bounding box
+    // above) and the three edge normals. Along edge e's normal n = (a, b) the triangle spans
+    // [min(0, side), max(0, side)] relative to the edge's line (side: where the opposite vertex
+    // lies), and the pixel square spans f(corner) + [minOff, maxOff]; the triangle meets the
+    // square exactly when all five projections overlap. This needs no orientation, so degenerate
+    // triangles (segments, points) are tested exactly too: their edge normals are the segment's
+    // normal, or zero (no constraint) for a point.
+    for (int e = 0; e < 3; ++e) {
+      const int i = e, j = (e + 1) % 3, k = (e + 2) % 3;
+      const double a = t.y[j] - t.y[i], b = -(t.x[j] - t.x[i]);
+      const double side = a * (t.x[k] - t.x[i]) + b * (t.y[k] - t.y[i]);
+      const double c = a * (ox - t.x[i]) + b * (oy - t.y[i]);
+      const double grow = m * (std::abs(a) + std::abs(b));
+      const double maxOff = std::max(a, 0.0) + std::max(b, 0.0) + grow;
+      const double minOff = std::min(a, 0.0) + std::min(b, 0.0) - grow;
+      const double lo = std::min(0.0, side) - maxOff, hi = std::max(0.0, side) - minOff;
+      // The loops evaluate f in float: widen by a bound of that error (only adds pixels).
+      const double tol = kFloatEvalError * (std::abs(a) * spanX + std::abs(b) * spanY +
+                                            std::abs(c) + std::abs(lo) + std::abs(hi));
+      r.a[e] = static_cast<float>(a), r.b[e] = static_cast<float>(b), r.c[e] = static_cast<float>(c);
+      r.lo[e] = roundDown(lo - tol), r.hi[e] = roundUp(hi + tol);
+      if (!std::isfinite(r.a[e]) || !std::isfinite(r.b[e]) || !std::isfinite(r.c[e]) ||
+          !std::isfinite(tol)) {
+        // Coordinates beyond float's range (far off-screen vertices): drop this edge's
+        // constraint; more pixels is the safe side for tests and writes alike.
+        r.a[e] = r.b[e] = r.c[e] = 0.f;
+        r.lo[e] = -std::numeric_limits<float>::infinity();
+        r.hi[e] = std::numeric_limits<float>::infinity();
+      }
+    }
+  } else {
+    // Pixel centres strictly inside, or on an edge that owns its boundary (a top-left style rule:
+    // of two triangles sharing an edge, exactly one owns it, as GL's rasterisers).
+    const double orient = det > 0 ? 1.0 : -1.0;
+    for (int e = 0; e < 3; ++e) {
+      const int i = e, j = (e + 1) % 3;
+      // Inside is f >= 0: n = orient * (-(yj - yi), xj - xi).
+      const double a = -orient * (t.y[j] - t.y[i]), b = orient * (t.x[j] - t.x[i]);
+      const double c = a * (ox + 0.5 - t.x[i]) + b * (oy + 0.5 - t.y[i]);
+      const bool owns = a > 0.0 || (a == 0.0 && b > 0.0);
+      r.a[e] = static_cast<float>(a), r.b[e] = static_cast<float>(b), r.c[e] = static_cast<float>(c);
+      r.lo[e] = owns ? 0.f : std::numeric_limits<float>::min();
+      r.hi[e] = std::numeric_limits<float>::infinity();
+    }
+  }
+
+  // Depth: the plane k0 + gx (x - x0) + gy (y - y0) of the keys, clamped to [zLo, zHi].
+  const bool test = role == RasterRole::Test;
+  // A usable plane: the triangle is not too close to edge-on (sine of its screen angle above
+  // 2^-20), so the gradient is well conditioned; otherwise the vertex bound alone is used.
+  const double scale = std::sqrt((e1x * e1x + e1y * e1y) * (e2x * e2x + e2y * e2y));
+  if (!(std::abs(det) > scale * (1.0 / (1 << 20)))) {
+    r.za = r.zb = 0.f;
+    r.zc = test ? r.zHi : r.zLo;
+    return;
+  }
+  const double dk1 = t.k[1] - t.k[0], dk2 = t.k[2] - t.k[0];
+  const double gx = (dk1 * e2y - dk2 * e1y) / det;
+  const double gy = (dk2 * e1x - dk1 * e2x) / det;
+  double zc;
+  if (conservative) {
+    // The plane over the grown pixel square at (x, y) lies within its values at the square's
+    // corners: the farthest corner bounds a test, the nearest a write. Its maximum over the
+    // covered part of the square is at most that, and at most kMax (the clamp).
+    const double grow = m * (std::abs(gx) + std::abs(gy));
+    const double corner = test ? std::max(gx, 0.0) + std::max(gy, 0.0) + grow
+                               : std::min(gx, 0.0) + std::min(gy, 0.0) - grow;
+    zc = t.k[0] + gx * (ox - t.x[0]) + gy * (oy - t.y[0]) + corner;
+  } else {
+    zc = t.k[0] + gx * (ox + 0.5 - t.x[0]) + gy * (oy + 0.5 - t.y[0]);
+  }
+  // The float evaluation's error (and the gradient's, 2^-32 relative at this conditioning),
+  // then the epsilon or offset toward "occluded".
+  double shift = kFloatDepthError * (std::abs(zc) + std::abs(gx) * spanX + std::abs(gy) * spanY);
+  if (conservative)
+    shift += pass.depthEpsilon;  // transform rounding and float32 storage, as GL's bound
+  else if (test)
+    shift += pass.rawTestOffset;
+  zc += test ? shift : -shift;
+  r.zc = test ? roundUp(zc) : roundDown(zc);
+  r.za = static_cast<float>(gx), r.zb = static_cast<float>(gy);
+  if (!std::isfinite(r.za) || !std::isfinite(r.zb) || !std::isfinite(r.zc)) {
+    r.za = r.zb = 0.f;  // the vertex bound alone
+    r.zc = test ? r.zHi : r.zLo;
+  }
+}
+
+// Both steps.
+CDB_RASTER_INLINE bool setupTriangle(const ScreenTriangle& t, const RasterPass& pass,
+                                     RasterRole role, TriangleRaster& r) {
+  if (!setupBounds(t, pass, role, r)) return false;
+  setupCoverage(t, pass, role, r);
+  return true;
+}
+
+}  // namespace cdb
