@@ -7,13 +7,6 @@
 
 namespace cdb {
 
-Eigen::Matrix4f boxMatrix(const OrientedBox& box) {
-  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-  m.topLeftCorner<3, 3>() = box.axes * box.halfExtents.asDiagonal();
-  m.topRightCorner<3, 1>() = box.center;
-  return m.cast<float>();
-}
-
 GlOcclusionQueryBackend::GlOcclusionQueryBackend(HeadlessGlContext& context,
                                                  const VisibilityOptions& options)
     : context_(&context), pipeline_(context) {
@@ -28,42 +21,16 @@ void GlOcclusionQueryBackend::setOptions(const VisibilityOptions& options) {
   pipeline_.setRawDepthOffset(options.rawDepthOffset);
 }
 
-void GlOcclusionQueryBackend::attachScene(const SceneGeometry& scene) {
-  pipeline_.attach(scene);
-  lastResolution_ = 0;
-}
+void GlOcclusionQueryBackend::attachScene(const SceneGeometry& scene) { pipeline_.attach(scene); }
 
 void GlOcclusionQueryBackend::setPoses(std::span<const Pose> poses) {
   pipeline_.uploadPoses(poses);
 }
 
 void GlOcclusionQueryBackend::beginPass(const ViewSpec& view, DepthUse depth) {
-  if (depth == DepthUse::SharedSecond &&
-      (lastDepth_ != DepthUse::SharedFirst || lastResolution_ != view.resolution))
-    throw RunError("a SharedSecond pass must follow a SharedFirst pass of the same resolution");
-  const DepthPassSetup setup = makeDepthPassSetup(view, depth);
-  pipeline_.beginPass(setup);
-  lastDepth_ = depth;
-  lastResolution_ = view.resolution;
+  const DepthPassSetup setup = pipeline_.beginCheckedPass(view, depth);
   ++counters_.passes;
   if (setup.clear) ++counters_.depthClears;
-}
-
-const GlMeshSlot& GlOcclusionQueryBackend::checkedSlot(ObjectId object) const {
-  if (object >= pipeline_.buffers().objectCount())
-    throw RunError("object " + std::to_string(object) + " is not in the attached scene of " +
-                   std::to_string(pipeline_.buffers().objectCount()) + " objects");
-  if (!pipeline_.inPass()) throw RunError("a visibility draw was issued outside a pass");
-  return pipeline_.buffers().slotOf(object);
-}
-
-void GlOcclusionQueryBackend::checkRange(const MeshRange& range) const {
-  const GlMeshSlot& slot = checkedSlot(range.object);
-  if (range.firstTriangle > slot.triangleCount ||
-      range.triangleCount > slot.triangleCount - range.firstTriangle)
-    throw RunError("triangles [" + std::to_string(range.firstTriangle) + ", +" +
-                   std::to_string(range.triangleCount) + ") are outside object " +
-                   std::to_string(range.object) + "'s " + std::to_string(slot.triangleCount));
 }
 
 void GlOcclusionQueryBackend::drawRange(const MeshRange& range, DrawRole role) {
@@ -88,7 +55,7 @@ void GlOcclusionQueryBackend::drawBox(ObjectId object, const OrientedBox& box, D
 }
 
 QueryIndex GlOcclusionQueryBackend::queryRange(const MeshRange& range) {
-  checkRange(range);
+  pipeline_.checkRange(range);
   const QueryIndex index = pipeline_.beginQuery();
   drawRange(range, DrawRole::Test);
   pipeline_.endQuery();
@@ -97,7 +64,7 @@ QueryIndex GlOcclusionQueryBackend::queryRange(const MeshRange& range) {
 }
 
 QueryIndex GlOcclusionQueryBackend::queryBox(ObjectId object, const OrientedBox& localBox) {
-  checkedSlot(object);
+  pipeline_.checkedSlot(object);
   const QueryIndex index = pipeline_.beginQuery();
   drawBox(object, localBox, DrawRole::Test);
   pipeline_.endQuery();
@@ -106,18 +73,18 @@ QueryIndex GlOcclusionQueryBackend::queryBox(ObjectId object, const OrientedBox&
 }
 
 void GlOcclusionQueryBackend::writeRange(const MeshRange& range) {
-  checkRange(range);
+  pipeline_.checkRange(range);
   drawRange(range, DrawRole::Write);
 }
 
 void GlOcclusionQueryBackend::writeBox(ObjectId object, const OrientedBox& localBox) {
-  checkedSlot(object);
+  pipeline_.checkedSlot(object);
   drawBox(object, localBox, DrawRole::Write);
 }
 
 void GlOcclusionQueryBackend::writeTriangles(ObjectId object,
                                              std::span<const std::uint32_t> triangles) {
-  const GlMeshSlot& slot = checkedSlot(object);
+  const GlMeshSlot& slot = pipeline_.checkedSlot(object);
   // Consecutive triangles become one run; all runs go in one multi-draw.
   runs_.clear();
   for (std::size_t i = 0; i < triangles.size();) {

@@ -47,8 +47,6 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   [[nodiscard]] GlVisibilityPipeline& pipeline() { return pipeline_; }
 
  private:
-  const GlMeshSlot& checkedSlot(ObjectId object) const;
-  void checkRange(const MeshRange& range) const;
   // Draws of already checked arguments.
   void drawRange(const MeshRange& range, DrawRole role);
   void drawBox(ObjectId object, const OrientedBox& box, DrawRole role);
@@ -57,13 +55,8 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   GlVisibilityPipeline pipeline_;
   VisibilityOptions options_;
   VisibilityCounters counters_;
-  DepthUse lastDepth_ = DepthUse::Fresh;
-  int lastResolution_ = 0;
   // Scratch for writeTriangles, reused so that a frame allocates nothing.
   std::vector<GlVisibilityPipeline::Run> runs_;
 };
-
-// The local matrix that maps the unit cube [-1, 1]^3 onto `box` (float, as the shaders take it).
-[[nodiscard]] Eigen::Matrix4f boxMatrix(const OrientedBox& box);
 
 }  // namespace cdb

@@ -23,6 +23,13 @@ Mesh unitCube() {
 
 }  // namespace
 
+Eigen::Matrix4f boxMatrix(const OrientedBox& box) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m.topLeftCorner<3, 3>() = box.axes * box.halfExtents.asDiagonal();
+  m.topRightCorner<3, 1>() = box.center;
+  return m.cast<float>();
+}
+
 void GlSceneBuffers::attach(const SceneGeometry& scene) {
   std::vector<const Mesh*> all;
   for (const Mesh& m : scene.meshes) all.push_back(&m);

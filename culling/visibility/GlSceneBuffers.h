@@ -1,13 +1,16 @@
 #pragma once
 // A scene's meshes resident on the GPU: every mesh in one vertex buffer and one index buffer (each
 // mesh a run of triangles; indices already offset to the shared vertex buffer), a unit cube for
-// boxes after them, and the per-frame model matrices in one shader storage buffer. The raw program
-// reads vertices through a vertex array; the conservative one reads the same two buffers as
-// storage buffers, a whole triangle per vertex invocation.
+// boxes after them (boxMatrix maps it onto a box), and the per-frame model matrices in one shader
+// storage buffer. The raw program reads vertices through a vertex array; the conservative one
+// reads the same two buffers as storage buffers, a whole triangle per vertex invocation.
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include <Eigen/Core>
+
+#include "core/OrientedBox.h"
 #include "core/Pose.h"
 #include "render/GlHandle.h"
 #include "scenes/SceneGeometry.h"
@@ -45,5 +48,8 @@ class GlSceneBuffers {
   std::vector<std::uint32_t> objectMesh_;
   std::vector<float> modelScratch_;
 };
+
+// The local matrix that maps the unit cube [-1, 1]^3 onto `box` (float, as the shaders take it).
+[[nodiscard]] Eigen::Matrix4f boxMatrix(const OrientedBox& box);
 
 }  // namespace cdb

@@ -6,16 +6,28 @@
 #include <string>
 
 #include "core/Errors.h"
+#include "culling/visibility/FlagShaders.h"
 #include "render/HeadlessGlContext.h"
 
 namespace cdb {
 
 namespace u = occlusion_uniform;
 
-GlVisibilityPipeline::GlVisibilityPipeline(HeadlessGlContext& context) : context_(&context) {
+GlVisibilityPipeline::GlVisibilityPipeline(HeadlessGlContext& context, PipelinePrograms programs)
+    : context_(&context), programs_(programs) {
   context.makeCurrent();
-  rawProgram_ = makeRawOcclusionProgram();
-  conservativeProgram_ = makeConservativeOcclusionProgram();
+  for (int conservative = 0; conservative < 2; ++conservative) {
+    if (programs == PipelinePrograms::Queries) {
+      ownedPrograms_.push_back(conservative ? makeConservativeOcclusionProgram()
+                                            : makeRawOcclusionProgram());
+      program_[conservative][0] = program_[conservative][1] = ownedPrograms_.back().get();
+    } else {
+      ownedPrograms_.push_back(makeFlagWriteProgram(conservative != 0));
+      program_[conservative][0] = ownedPrograms_.back().get();
+      ownedPrograms_.push_back(makeFlagTestProgram(conservative != 0));
+      program_[conservative][1] = ownedPrograms_.back().get();
+    }
+  }
   GLint renderbufferMax = 0, viewportMax[2] = {0, 0};
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbufferMax);
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewportMax);
@@ -66,6 +78,34 @@ void GlVisibilityPipeline::ensureTarget(int resolution) {
   targetResolution_ = resolution;
 }
 
+const GlMeshSlot& GlVisibilityPipeline::checkedSlot(ObjectId object) const {
+  if (object >= buffers_.objectCount())
+    throw RunError("object " + std::to_string(object) + " is not in the attached scene of " +
+                   std::to_string(buffers_.objectCount()) + " objects");
+  if (!inPass_) throw RunError("a visibility draw was issued outside a pass");
+  return buffers_.slotOf(object);
+}
+
+void GlVisibilityPipeline::checkRange(const MeshRange& range) const {
+  const GlMeshSlot& slot = checkedSlot(range.object);
+  if (range.firstTriangle > slot.triangleCount ||
+      range.triangleCount > slot.triangleCount - range.firstTriangle)
+    throw RunError("triangles [" + std::to_string(range.firstTriangle) + ", +" +
+                   std::to_string(range.triangleCount) + ") are outside object " +
+                   std::to_string(range.object) + "'s " + std::to_string(slot.triangleCount));
+}
+
+DepthPassSetup GlVisibilityPipeline::beginCheckedPass(const ViewSpec& view, DepthUse depth) {
+  if (depth == DepthUse::SharedSecond &&
+      (lastDepth_ != DepthUse::SharedFirst || lastResolution_ != view.resolution))
+    throw RunError("a SharedSecond pass must follow a SharedFirst pass of the same resolution");
+  const DepthPassSetup setup = makeDepthPassSetup(view, depth);
+  beginPass(setup);
+  lastDepth_ = depth;
+  lastResolution_ = view.resolution;
+  return setup;
+}
+
 void GlVisibilityPipeline::beginPass(const DepthPassSetup& setup) {
   if (!buffers_.attached()) throw RunError("a visibility pass began before a scene was attached");
   if (setup.resolution < 1 || setup.resolution > maxResolution_)
@@ -93,27 +133,42 @@ void GlVisibilityPipeline::applyPassState() {
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
   glDepthRange(setup_.depthNear, setup_.depthFar);
-  buffers_.bind(conservative_);
+  buffers_.bind(pulled());
   const Eigen::Matrix4f worldToScreen = setup_.worldToScreen.cast<float>();
   const Eigen::Matrix4f worldToClip = setup_.worldToClip.cast<float>();
-  if (conservative_) {
-    glUseProgram(conservativeProgram_.get());
-    glUniformMatrix4fv(u::kWorldTo, 1, GL_FALSE, worldToScreen.data());
-    // The epsilon is in stored-depth units; the shader works in view depth t.
-    glUniform1f(u::kDepthEpsilon, static_cast<float>(setup_.depthEpsilon /
-                                                     std::abs(setup_.depthFar - setup_.depthNear)));
-    glUniform1f(u::kGrowPx, static_cast<float>(0.5 + setup_.coverageMarginPx));
-    glUniform1f(u::kResolution, static_cast<float>(setup_.resolution));
-  } else {
-    glUseProgram(rawProgram_.get());
-    glUniformMatrix4fv(u::kWorldTo, 1, GL_FALSE, worldToClip.data());
+  const GLuint* programs = program_[conservative_ ? 1 : 0];
+  for (int p = 0; p < 2; ++p) {
+    const GLuint program = programs[p];
+    if (p == 1 && program == programs[0]) break;  // one program for both roles
+    if (conservative_) {
+      glProgramUniformMatrix4fv(program, u::kWorldTo, 1, GL_FALSE, worldToScreen.data());
+      // The epsilon is in stored-depth units; the shader works in view depth t.
+      glProgramUniform1f(program, u::kDepthEpsilon,
+                         static_cast<float>(setup_.depthEpsilon /
+                                            std::abs(setup_.depthFar - setup_.depthNear)));
+      glProgramUniform1f(program, u::kGrowPx, static_cast<float>(0.5 + setup_.coverageMarginPx));
+      glProgramUniform1f(program, u::kResolution, static_cast<float>(setup_.resolution));
+    } else {
+      glProgramUniformMatrix4fv(program, u::kWorldTo, 1, GL_FALSE, worldToClip.data());
+    }
   }
+  currentProgram_ = 0;
+  useProgram(programFor(DrawRole::Write));
   role_ = DrawRole::None;
+}
+
+void GlVisibilityPipeline::useProgram(GLuint program) {
+  if (program == currentProgram_) return;
+  glUseProgram(program);
+  currentProgram_ = program;
+  // Uniforms are the program's own: what is cached was set on another one.
   object_ = ~ObjectId{0};
   localIdentity_ = false;
+  flagDrawSet_ = false;
 }
 
 void GlVisibilityPipeline::applyRole(DrawRole role) {
+  useProgram(programFor(role));
   const bool reversed = setup_.reversed();
   if (role == DrawRole::Test) {
     // At or behind what is stored = occluded; nothing of the test is stored.
@@ -135,9 +190,31 @@ void GlVisibilityPipeline::applyLocal(const Eigen::Matrix4f& local, bool identit
   localIdentity_ = identity;
 }
 
+void GlVisibilityPipeline::applyFlagDraw(const FlagDraw& draw) {
+  namespace f = flag_uniform;
+  glUniform1i(f::kItemBase, draw.itemBase);
+  glUniform1i(f::kItemPerTriangle, draw.itemPerTriangle ? 1 : 0);
+  glUniform1i(f::kListed, draw.listed ? 1 : 0);
+  glUniform1i(f::kBoxBase, draw.boxBase);
+  flagDraw_ = draw;
+  flagDrawSet_ = true;
+}
+
+void GlVisibilityPipeline::drawSegments(std::uint32_t first, std::uint32_t count) {
+  runFirsts_.clear();
+  runCounts_.clear();
+  for (std::uint32_t done = 0; done < count; done += kSegmentTriangles) {
+    runFirsts_.push_back(static_cast<GLint>(kConservativeVerticesPerTriangle * (first + done)));
+    runCounts_.push_back(static_cast<GLsizei>(kConservativeVerticesPerTriangle *
+                                              std::min(kSegmentTriangles, count - done)));
+  }
+  glMultiDrawArrays(GL_TRIANGLES, runFirsts_.data(), runCounts_.data(),
+                    static_cast<GLsizei>(runFirsts_.size()));
+}
+
 void GlVisibilityPipeline::drawRuns(const GlMeshSlot& slot, std::span<const Run> runs) {
   runCounts_.clear();
-  if (conservative_) {
+  if (pulled()) {
     runFirsts_.clear();
     for (const Run& r : runs) {
       runFirsts_.push_back(

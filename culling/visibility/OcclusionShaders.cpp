@@ -1,29 +1,48 @@
 #include "culling/visibility/OcclusionShaders.h"
 
+#include <string>
+
 #include "render/GlProgram.h"
 
 namespace cdb {
 
 namespace {
 
-// Every vertex: local (or box) -> object pose from the per-frame matrix buffer -> the pass' view.
-constexpr const char* kRawVertex = R"(#version 450 core
-layout(location = 0) in vec3 aPosition;
+constexpr const char* kVersion = "#version 450 core\n";
+
+// Every vertex shader: the per-frame model matrices, the drawn object and the local frame of the
+// drawn piece (a box) or identity.
+constexpr const char* kCommonVertex = R"(
 layout(std430, binding = 0) readonly buffer ModelMatrices { mat4 uModels[]; };
 layout(location = 0) uniform int uObject;
 layout(location = 1) uniform mat4 uLocal;
-layout(location = 2) uniform mat4 uWorldToClip;
-layout(location = 3) uniform float uNdcOffset;
-void main() {
-  vec4 clip = uWorldToClip * (uModels[uObject] * (uLocal * vec4(aPosition, 1.0)));
-  // Tests are pushed away from the viewer by the thesis' small offset (NDC z grows along the view
-  // in both depth orders; glDepthRange does the reversing).
-  gl_Position = vec4(clip.xy, clip.z + uNdcOffset, 1.0);
+)";
+
+// Triangles pulled from the shared buffers instead of a vertex array.
+constexpr const char* kPulledVertex = R"(
+layout(std430, binding = 1) readonly buffer Positions { float uPositions[]; };
+layout(std430, binding = 2) readonly buffer Indices { uint uIndices[]; };
+vec3 pulledVertex(int triangle, int corner) {
+  uint v = 3u * uIndices[3 * triangle + corner];
+  return vec3(uPositions[v], uPositions[v + 1u], uPositions[v + 2u]);
 }
 )";
 
-constexpr const char* kEmptyFragment = R"(#version 450 core
-void main() {}
+// Local (or box) -> object pose from the per-frame matrix buffer -> the pass' view.
+constexpr const char* kRawVertex = R"(
+layout(location = 2) uniform mat4 uWorldToClip;
+layout(location = 3) uniform float uNdcOffset;
+vec4 rawClipPosition(mat4 local, vec3 position) {
+  vec4 clip = uWorldToClip * (uModels[uObject] * (local * vec4(position, 1.0)));
+  // Tests are pushed away from the viewer by the thesis' small offset (NDC z grows along the view
+  // in both depth orders; glDepthRange does the reversing).
+  return vec4(clip.xy, clip.z + uNdcOffset, 1.0);
+}
+)";
+
+constexpr const char* kRawQueryMain = R"(
+layout(location = 0) in vec3 aPosition;
+void main() { gl_Position = rawClipPosition(uLocal, aPosition); }
 )";
 
 // Conservative rasterisation without a geometry shader (slow on llvmpipe): each triangle is drawn
@@ -35,7 +54,7 @@ void main() {}
 // the square's support g (|nx| + |ny|). Slabs need no orientation, so edge-on and degenerate
 // triangles are handled alike. The vertices span a region containing it (the triangle with its
 // edges pushed out, or for slivers, whose pushed-out triangle is huge, a triangle holding the box)
-// and the fragment shader discards what lies outside it.
+// and the fragment shader keeps only what lies inside it.
 //
 // Depth: orthographic depth t is linear in screen space, so over a grown pixel square it stays
 // within g (|dt/dx| + |dt/dy|) of its value at the centre. A test draws the plane moved back by
@@ -44,12 +63,7 @@ void main() {}
 // epsilon toward "occluded". Either is a valid bound of the triangle's depth anywhere in the pixel,
 // and being linear it is interpolated by the rasteriser: no gl_FragDepth, so early depth tests
 // stay on.
-constexpr const char* kConservativeVertex = R"(#version 450 core
-layout(std430, binding = 0) readonly buffer ModelMatrices { mat4 uModels[]; };
-layout(std430, binding = 1) readonly buffer Positions { float uPositions[]; };
-layout(std430, binding = 2) readonly buffer Indices { uint uIndices[]; };
-layout(location = 0) uniform int uObject;
-layout(location = 1) uniform mat4 uLocal;
+constexpr const char* kConservativeVertex = R"(
 layout(location = 2) uniform mat4 uWorldToScreen;
 layout(location = 4) uniform float uSide;          // +1 test (farthest), -1 write (nearest)
 layout(location = 5) uniform float uDepthEpsilon;  // in units of t
@@ -63,15 +77,12 @@ vec2 meet(vec3 a, vec3 b) {  // intersection of the lines dot(a.xy, x) = a.z and
   return vec2(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
 }
 
-void main() {
-  int triangle = gl_VertexID / 3;
-  int corner = gl_VertexID - 3 * triangle;
-  mat4 toScreen = uWorldToScreen * uModels[uObject] * uLocal;
+// Corner `corner` (0, 1, 2) of the region drawn for `triangle` of the shared buffers.
+void conservativeCorner(mat4 toScreen, int triangle, int corner) {
   vec2 p[3];
   vec3 t;
   for (int i = 0; i < 3; ++i) {
-    uint v = 3u * uIndices[3 * triangle + i];
-    vec3 s = (toScreen * vec4(uPositions[v], uPositions[v + 1u], uPositions[v + 2u], 1.0)).xyz;
+    vec3 s = (toScreen * vec4(pulledVertex(triangle, i), 1.0)).xyz;
     p[i] = s.xy;
     t[i] = s.z;
   }
@@ -143,30 +154,70 @@ void main() {
 }
 )";
 
-constexpr const char* kConservativeFragment = R"(#version 450 core
+constexpr const char* kConservativeQueryMain = R"(
+void main() {
+  int triangle = gl_VertexID / 3;
+  conservativeCorner(uWorldToScreen * uModels[uObject] * uLocal, triangle,
+                     gl_VertexID - 3 * triangle);
+}
+)";
+
+constexpr const char* kCoverage = R"(
 flat in vec4 vBox;
 flat in vec4 vSlab[3];
-void main() {
-  vec2 x = gl_FragCoord.xy;
+bool coversPixel(vec2 x) {
   bool inside = all(greaterThanEqual(x, vBox.xy)) && all(lessThanEqual(x, vBox.zw));
   for (int i = 0; i < 3; ++i) {
     float s = dot(vSlab[i].xy, x);
     inside = inside && s >= vSlab[i].z && s <= vSlab[i].w;
   }
-  if (!inside) discard;
+  return inside;
+}
+)";
+
+constexpr const char* kEmptyFragmentMain = R"(
+void main() {}
+)";
+
+constexpr const char* kCoverageFragmentMain = R"(
+void main() {
+  if (!coversPixel(gl_FragCoord.xy)) discard;
 }
 )";
 
 }  // namespace
 
+std::string occlusionVertexHead(bool conservative) {
+  std::string s = kVersion;
+  s += kCommonVertex;
+  s += kPulledVertex;
+  s += conservative ? kConservativeVertex : kRawVertex;
+  return s;
+}
+
+std::string occlusionFragmentHead(bool conservative) {
+  std::string s = kVersion;
+  if (conservative) s += kCoverage;
+  return s;
+}
+
+std::string occlusionWriteFragmentShader(bool conservative) {
+  return occlusionFragmentHead(conservative) +
+         (conservative ? kCoverageFragmentMain : kEmptyFragmentMain);
+}
+
 GlProgramName makeRawOcclusionProgram() {
+  const std::string vertex = occlusionVertexHead(false) + kRawQueryMain;
+  const std::string fragment = occlusionWriteFragmentShader(false);
   return linkProgram("raw occlusion",
-                     {{GL_VERTEX_SHADER, kRawVertex}, {GL_FRAGMENT_SHADER, kEmptyFragment}});
+                     {{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}});
 }
 
 GlProgramName makeConservativeOcclusionProgram() {
-  return linkProgram("conservative occlusion", {{GL_VERTEX_SHADER, kConservativeVertex},
-                                                {GL_FRAGMENT_SHADER, kConservativeFragment}});
+  const std::string vertex = occlusionVertexHead(true) + kConservativeQueryMain;
+  const std::string fragment = occlusionWriteFragmentShader(true);
+  return linkProgram("conservative occlusion",
+                     {{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}});
 }
 
 }  // namespace cdb

@@ -1,7 +1,10 @@
 #pragma once
 // The programs the occlusion-query backend draws with: plain rasterisation (the thesis' raw mode)
 // and conservative rasterisation (Hasselgren, Akenine-Moller and Ohlsson, "Conservative
-// Rasterization", GPU Gems 2, ch. 42) with conservative depth.
+// Rasterization", GPU Gems 2, ch. 42) with conservative depth. Their GLSL is also the head of the
+// flag backend's programs (FlagShaders), so that both rasterise with one copy of the arithmetic.
+#include <string>
+
 #include "render/GlHandle.h"
 
 namespace cdb {
@@ -25,6 +28,18 @@ inline constexpr GLuint kIndexBinding = 2;        // the shared index buffer, 3 
 
 // The conservative program draws triangle i as vertices [3 i, 3 i + 3) of glDrawArrays.
 inline constexpr int kConservativeVerticesPerTriangle = 3;
+
+// A vertex shader's start: the version line, the uniforms above, pulledVertex(triangle, corner)
+// (a corner of a triangle of the shared buffers) and, raw, rawClipPosition(local, position) or,
+// conservative, conservativeCorner(toScreen, triangle, corner) (a corner of the region drawn for a
+// triangle, with its outputs). A main() of the caller's follows.
+[[nodiscard]] std::string occlusionVertexHead(bool conservative);
+// A fragment shader's start: the version line and, conservative, coversPixel(gl_FragCoord.xy) on
+// the vertex shader's outputs.
+[[nodiscard]] std::string occlusionFragmentHead(bool conservative);
+// The whole fragment shader of writes (and of tests counted by occlusion queries): conservative,
+// what coversPixel rejects is discarded.
+[[nodiscard]] std::string occlusionWriteFragmentShader(bool conservative);
 
 [[nodiscard]] GlProgramName makeRawOcclusionProgram();
 [[nodiscard]] GlProgramName makeConservativeOcclusionProgram();

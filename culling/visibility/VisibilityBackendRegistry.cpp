@@ -2,6 +2,7 @@
 
 #include "core/Errors.h"
 #include "culling/visibility/GlDrawFloor.h"
+#include "culling/visibility/GlFlagBackend.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 #include "culling/visibility/cpu/CpuRasterBackend.h"
 
@@ -18,6 +19,13 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           },
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlQueryFloor>(resources.gl(), options);
+          });
+    r.add("gl-flags",
+          "OpenGL, a batch of tests in one draw whose failing fragments set their piece's flag in a "
+          "storage buffer; one read-back per fetch",
+          {.needsGl = true},
+          [](BackendResources& resources, const VisibilityOptions& options) {
+            return std::make_unique<GlFlagBackend>(resources.gl(), options);
           });
     r.add("cpu",
           "exact conservative CPU depth rasteriser (SIMD, threads); needs no GL",
