@@ -19,6 +19,7 @@
 #include "scenes/MeshMeasures.h"
 #include "scenes/PoseRecording.h"
 #include "scenes/RigidBodySimulation.h"
+#include "scenes/SceneBuilder.h"
 #include "tests/scenes/DynamicsTestScenes.h"
 
 namespace cdb {
@@ -206,6 +207,19 @@ TEST(RigidBodyDynamics, ShippedEnv3PlacesAndKeepsItsToriInsideTheCube) {
     }
   }
   EXPECT_LT(farthest, halfExtent);
+}
+
+// The sweep's every simulation must start: each repeat r is seeded seed + r, and env3's largest
+// count fills its cube near the placement limit.
+TEST(RigidBodyDynamics, ShippedEnv3PlacesItsLargestCountForEveryRepeat) {
+  const ScenarioConfig config =
+      loadScenarioConfig(std::filesystem::path(CDBENCH_SOURCE_DIR) / "configs" / "env3.yaml");
+  const int largest = *std::max_element(config.sweep.objectCounts.begin(), config.sweep.objectCounts.end());
+  const ScenarioConfig full = withObjectCount(config, largest);
+  const SceneGeometry scene = sceneFor(full);
+  for (int r = 0; r < config.sweep.repeats; ++r)
+    EXPECT_NO_THROW(RigidBodySimulation(full, scene, config.seed + static_cast<std::uint64_t>(r)))
+        << "repeat " << r;
 }
 
 TEST(RigidBodyDynamics, PoseMapsMeshCoordinatesThroughTheCentreOfMassOffset) {
