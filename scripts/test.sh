@@ -25,8 +25,8 @@ ctest --preset release -j "$jobs"
 stage "release ctest"
 
 # ctest regex and the same as a gtest negative filter.
-asan_excluded='Dragon|_256|_800|_Tori_|ToriAndPlanes|OnRandomTori|RandomSoupInvariants|PeerTest.RandomTori|MatchesGroundTruthWith(OneSetOfAllTori|TriangleSubsets)|TwoLargeSets|TriangleTriangleRandom.*/(2|3|42)$'
-asan_excluded_gtest='*Dragon*:*_256:*_800:*_Tori_*:*ToriAndPlanes*:*OnRandomTori:*RandomSoupInvariants*:*MatchesGroundTruthWithOneSetOfAllTori:*MatchesGroundTruthWithTriangleSubsets:*TwoLargeSets*:*TriangleTriangleRandom*/2:*TriangleTriangleRandom*/3:*TriangleTriangleRandom*/42'
+asan_excluded='Dragon|_256|_800|_Tori_|Equivalence.*/env[12]_|ToriAndPlanes|OnRandomTori|RandomSoupInvariants|PeerTest.RandomTori|MatchesGroundTruthWith(OneSetOfAllTori|TriangleSubsets)|TwoLargeSets|TriangleTriangleRandom.*/(2|3|42)$'
+asan_excluded_gtest='*Dragon*:*_256:*_800:*_Tori_*:*Equivalence*/env1_*:*Equivalence*/env2_*:*ToriAndPlanes*:*OnRandomTori:*RandomSoupInvariants*:*MatchesGroundTruthWithOneSetOfAllTori:*MatchesGroundTruthWithTriangleSubsets:*TwoLargeSets*:*TriangleTriangleRandom*/2:*TriangleTriangleRandom*/3:*TriangleTriangleRandom*/42'
 
 if [[ "${CDBENCH_SKIP_SANITIZERS:-0}" != 1 ]]; then
   bash scripts/build.sh debug

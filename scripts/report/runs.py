@@ -242,9 +242,14 @@ def describe_backend(meta):
 
 
 def renderer_of(meta):
-    return meta.get("gl", {}).get("renderer") or "unknown GL renderer"
+    """What rendered the run's visibility tests: the backend's renderer, else GL's."""
+    return ((meta.get("visibility") or {}).get("renderer") or meta.get("gl", {}).get("renderer")
+            or "unknown renderer")
 
 
 def is_software_renderer(meta):
+    """Rendered on the CPU: a software GL driver, or the cpu backend."""
+    if backend_of(meta) == "cpu":
+        return True
     r = renderer_of(meta).lower()
     return any(s in r for s in ("llvmpipe", "softpipe", "swiftshader", "swrast", "lavapipe"))
