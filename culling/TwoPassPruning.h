@@ -3,6 +3,7 @@
 // draws pieces in one order, testing each against those drawn before it; pass 2 draws them in
 // the reverse order. A piece fully visible in both passes touches nothing else drawn, and leaves.
 // The strategies differ only in the order and in how the two passes use the depth buffer.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -11,6 +12,10 @@
 #include "culling/visibility/VisibilityBackend.h"
 
 namespace cdb {
+
+// CULLIDE's view axes, in the order its passes take them: x, y, z.
+inline const std::array<Eigen::Vector3d, 3> kCullideAxes = {
+    Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()};
 
 struct PassPair {
   ViewSpec first, second;

@@ -4,11 +4,6 @@
 
 namespace cdb {
 
-namespace {
-const std::array<Eigen::Vector3d, 3> kAxes = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-                                              Eigen::Vector3d::UnitZ()};
-}  // namespace
-
 Cullide::Cullide(const StrategyOptions& options) : options_(options) {}
 
 void Cullide::attach(const SceneGeometry& scene, VisibilityBackend& backend) {
@@ -46,10 +41,10 @@ CullingResult Cullide::cull(const FrameInput& frame) {
 
   std::vector<ObjectId> pcs(scene_->objectCount());
   for (std::size_t i = 0; i < pcs.size(); ++i) pcs[i] = static_cast<ObjectId>(i);
-  for (const auto& axis : kAxes) pruneObjects(pcs, axis);
+  for (const auto& axis : kCullideAxes) pruneObjects(pcs, axis);
 
   std::vector<SetMember> members = withAllTriangles(*scene_, pcs);
-  for (const auto& axis : kAxes) pruneTriangles(members, axis);
+  for (const auto& axis : kCullideAxes) pruneTriangles(members, axis);
   return singleSetResult(*scene_, std::move(members), backend_->counters() - before);
 }
 

@@ -8,9 +8,6 @@ namespace cdb {
 
 namespace {
 
-const std::array<Eigen::Vector3d, 3> kAxes = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-                                              Eigen::Vector3d::UnitZ()};
-
 constexpr std::uint8_t kVisibleFirst = 1;
 constexpr std::uint8_t kVisibleSecond = 2;
 
@@ -187,7 +184,7 @@ CullingResult QuickCullide::cull(const FrameInput& frame) {
 
   objects_.resize(scene_->objectCount());
   for (std::size_t o = 0; o < objects_.size(); ++o) objects_[o] = static_cast<ObjectId>(o);
-  for (std::size_t k = 0; k < kAxes.size(); ++k) classifyObjects(kAxes[k], k == 0);
+  for (std::size_t k = 0; k < kCullideAxes.size(); ++k) classifyObjects(kCullideAxes[k], k == 0);
 
   // Object pairs into member pairs: members in pass-1 order, every triangle on both sides.
   members_.clear();
@@ -200,7 +197,7 @@ CullingResult QuickCullide::cull(const FrameInput& frame) {
   isEarlier_.assign(members_.size(), 0);
   isLater_.assign(members_.size(), 0);
   for (const auto& p : memberPairs_) isEarlier_[p.first] = isLater_[p.second] = 1;
-  for (const auto& axis : kAxes) classifyTriangles(axis);
+  for (const auto& axis : kCullideAxes) classifyTriangles(axis);
 
   return result(backend_->counters() - before);
 }

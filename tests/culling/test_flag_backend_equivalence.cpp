@@ -115,9 +115,9 @@ std::uint8_t askedAgain(HeadlessGlContext& context, const VisibilityOptions& opt
   return answers.at(0).at(call.offset);
 }
 
-using Param = std::tuple<int, std::string, int>;  // frame, strategy, resolution
+using RecordedCase = std::tuple<int, std::string, int>;  // frame, strategy, resolution
 
-class FlagBackendEquivalence : public testing::TestWithParam<Param> {};
+class FlagBackendEquivalence : public ::testing::TestWithParam<RecordedCase> {};
 
 TEST_P(FlagBackendEquivalence, SameAnswerToEveryQuery) {
   const auto& [frameIndex, strategyName, resolution] = GetParam();
@@ -182,8 +182,8 @@ TEST_P(FlagBackendEquivalence, SameAnswerToEveryQuery) {
               static_cast<unsigned long long>(queries.counters().draws));
 }
 
-std::vector<Param> allParams() {
-  std::vector<Param> out;
+std::vector<RecordedCase> recordedCases() {
+  std::vector<RecordedCase> out;
   for (int f = 0; f < static_cast<int>(std::size(kFrames)); ++f)
     for (const auto& name : StrategyRegistry::builtin().names())
       // The CPU peers decide their pairs themselves and draw nothing.
@@ -194,7 +194,7 @@ std::vector<Param> allParams() {
   return out;
 }
 
-INSTANTIATE_TEST_SUITE_P(Recorded, FlagBackendEquivalence, testing::ValuesIn(allParams()),
+INSTANTIATE_TEST_SUITE_P(Recorded, FlagBackendEquivalence, ::testing::ValuesIn(recordedCases()),
                          [](const auto& param) {
                            return std::string(kFrames[std::get<0>(param.param)].name) + "_" +
                                   std::get<1>(param.param) + "_" +

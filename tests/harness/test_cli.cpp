@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/FrameCsv.h"
+#include "tests/common/FreshTempDir.h"
 #include "tests/common/ShellCommand.h"
 
 namespace {
@@ -18,12 +19,7 @@ cdb::test::CommandResult runCdbench(const std::string& args) {
   return cdb::test::runShellCommand(std::string(CDBENCH_BINARY_DIR) + "/cdbench " + args + " 2>&1");
 }
 
-std::filesystem::path tempDir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("cdbench_cli_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path tempDir(const std::string& name) { return cdb::test::freshTempDir("cli_" + name); }
 
 const std::string kConfigs = std::string(CDBENCH_SOURCE_DIR) + "/configs/";
 

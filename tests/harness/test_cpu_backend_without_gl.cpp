@@ -8,19 +8,13 @@
 #include <string>
 
 #include "harness/FrameCsv.h"
+#include "tests/common/FreshTempDir.h"
 #include "tests/common/ShellCommand.h"
 
 namespace {
 
 // glvnd looks for EGL vendors (Mesa's 50_mesa.json, ...) only here: an empty answer means no EGL.
 const std::string kNoEgl = "__EGL_VENDOR_LIBRARY_DIRS=/nonexistent ";
-
-std::filesystem::path tempDir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("cdbench_nogl_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
 
 cdb::test::CommandResult runWithoutEgl(const std::string& backend, const std::filesystem::path& out) {
   return cdb::test::runShellCommand(
@@ -30,7 +24,7 @@ cdb::test::CommandResult runWithoutEgl(const std::string& backend, const std::fi
 }
 
 TEST(CpuBackendWithoutGl, RunsWithNoFalseNegatives) {
-  const auto out = tempDir("cpu");
+  const auto out = cdb::test::freshTempDir("nogl_cpu");
   const auto r = runWithoutEgl("cpu", out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const auto rows = cdb::readFrameCsv(out / "frames.csv");
@@ -43,7 +37,7 @@ TEST(CpuBackendWithoutGl, RunsWithNoFalseNegatives) {
 }
 
 TEST(CpuBackendWithoutGl, GlQueriesFailCleanlyThere) {
-  const auto out = tempDir("gl");
+  const auto out = cdb::test::freshTempDir("nogl_gl");
   const auto r = runWithoutEgl("gl-queries", out);
   EXPECT_EQ(r.exitCode, 1) << r.output;  // a RunError, not a crash
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;

@@ -15,16 +15,16 @@ using test::squareMesh;
 using test::wholeOf;
 
 // Backend, conservative mode.
-using Param = std::tuple<std::string, bool>;
+using BackendAndMode = std::tuple<std::string, bool>;
 
 struct ParamName {
-  std::string operator()(const testing::TestParamInfo<Param>& info) const {
+  std::string operator()(const testing::TestParamInfo<BackendAndMode>& info) const {
     return test::testNamePart(std::get<0>(info.param)) +
            (std::get<1>(info.param) ? "_Conservative" : "_Raw");
   }
 };
 
-class OcclusionSemantics : public testing::TestWithParam<Param> {
+class OcclusionSemantics : public testing::TestWithParam<BackendAndMode> {
  protected:
   // Squares of half size 1: A at z = 0, B at z = 2 (behind A along +z), C at z = -2 (in front),
   // D beside A in the image (x = 5), E coplanar with A.
