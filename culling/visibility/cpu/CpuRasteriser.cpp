@@ -62,10 +62,30 @@ HWY_INLINE Lanes lanesOf(const TriangleRaster& r) {
   return l;
 }
 
-// Per-row values: the box's columns inside the tile, and the edge and depth functions at the
-// row's dx = 0 (a dx + b dy + c with dy fixed).
+// The part of the triangle's pixel box inside tile (tx, ty): its columns (also as dx, for the
+// lane masks) and its rows. Tests and writes visit the same pixels.
+struct TileSpan {
+  int cx0, cx1, ry0, ry1;
+  hn::Vec<D> boxLo, boxHi;
+  // Whether the step of `n` lanes from tile column `lx` holds a column of the span.
+  [[nodiscard]] bool holdsStep(int tx, int lx, int n) const {
+    return tx * kTile + lx <= cx1 && tx * kTile + lx + n - 1 >= cx0;
+  }
+  [[nodiscard]] int columns() const { return cx1 - cx0 + 1; }
+};
+HWY_INLINE TileSpan spanInTile(const TriangleRaster& r, int tx, int ty) {
+  const D d;
+  TileSpan s;
+  s.cx0 = std::max(r.x0, tx * kTile), s.cx1 = std::min(r.x1, tx * kTile + kTile - 1);
+  s.ry0 = std::max(r.y0, ty * kTile), s.ry1 = std::min(r.y1, ty * kTile + kTile - 1);
+  s.boxLo = hn::Set(d, static_cast<float>(s.cx0 - r.x0));
+  s.boxHi = hn::Set(d, static_cast<float>(s.cx1 - r.x0));
+  return s;
+}
+
+// Per-row values: the edge and depth functions at the row's dx = 0 (a dx + b dy + c with dy
+// fixed).
 struct RowSetup {
-  int cx0, cx1;
   hn::Vec<D> base[3];
   hn::Vec<D> zBase;
 };
@@ -112,18 +132,15 @@ bool testOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaste
       const bool allBehind = r.zLo >= stored.farthest;
       const bool uniform = buffer.uniform(index);
       const float* values = buffer.tile(index);
+      const TileSpan span = spanInTile(r, tx, ty);
       RowSetup row;
-      row.cx0 = std::max(r.x0, tx * kTile), row.cx1 = std::min(r.x1, tx * kTile + kTile - 1);
-      const auto boxLo = hn::Set(d, static_cast<float>(row.cx0 - r.x0));
-      const auto boxHi = hn::Set(d, static_cast<float>(row.cx1 - r.x0));
-      const int ry0 = std::max(r.y0, ty * kTile), ry1 = std::min(r.y1, ty * kTile + kTile - 1);
-      for (int y = ry0; y <= ry1; ++y) {
+      for (int y = span.ry0; y <= span.ry1; ++y) {
         startRow(l, y, r, row);
-        work.pixelsTested += static_cast<std::uint64_t>(row.cx1 - row.cx0 + 1);
+        work.pixelsTested += static_cast<std::uint64_t>(span.columns());
         for (int lx = 0; lx < kTile; lx += n) {
-          if (tx * kTile + lx > row.cx1 || tx * kTile + lx + n - 1 < row.cx0) continue;
+          if (!span.holdsStep(tx, lx, n)) continue;
           const auto dx = hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0));
-          const auto m = covered(l, row, dx, boxLo, boxHi);
+          const auto m = covered(l, row, dx, span.boxLo, span.boxHi);
           if (allBehind) {
             if (!hn::AllFalse(d, m)) return true;
             continue;
@@ -171,18 +188,15 @@ void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRast
       buffer.materialise(index);
       float* values = buffer.tile(index);
       bool changed = false;
+      const TileSpan span = spanInTile(r, tx, ty);
       RowSetup row;
-      row.cx0 = std::max(r.x0, tx * kTile), row.cx1 = std::min(r.x1, tx * kTile + kTile - 1);
-      const auto boxLo = hn::Set(d, static_cast<float>(row.cx0 - r.x0));
-      const auto boxHi = hn::Set(d, static_cast<float>(row.cx1 - r.x0));
-      const int ry0 = std::max(r.y0, ty * kTile), ry1 = std::min(r.y1, ty * kTile + kTile - 1);
-      for (int y = ry0; y <= ry1; ++y) {
+      for (int y = span.ry0; y <= span.ry1; ++y) {
         startRow(l, y, r, row);
-        work.pixelsWritten += static_cast<std::uint64_t>(row.cx1 - row.cx0 + 1);
+        work.pixelsWritten += static_cast<std::uint64_t>(span.columns());
         for (int lx = 0; lx < kTile; lx += n) {
-          if (tx * kTile + lx > row.cx1 || tx * kTile + lx + n - 1 < row.cx0) continue;
+          if (!span.holdsStep(tx, lx, n)) continue;
           const auto dx = hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0));
-          const auto m = covered(l, row, dx, boxLo, boxHi);
+          const auto m = covered(l, row, dx, span.boxLo, span.boxHi);
           float* at = values + (y % kTile) * kTile + lx;
           const auto storedKey = hn::Mul(hn::LoadU(d, at), sign);
           const auto key = keyAt(l, row, dx);
