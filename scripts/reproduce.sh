@@ -3,7 +3,8 @@
 # env2 and env3 on a visibility backend, then write comparison tables, figures and REPORT.md into
 # results/<profile>/ (one folder per backend: results/<profile>/<backend>/envN).
 #
-#   scripts/reproduce.sh [quick|standard|full] [--visibility NAME] [--jobs N]
+#   scripts/reproduce.sh [quick|standard|full] [--visibility NAME] [--jobs N] [--out DIR]
+#                        [--env env1,env3] [--no-build] [--no-report]
 #
 # Every profile runs every strategy of the configs (the thesis' three and quick_cullide) at every
 # resolution (500..1200) and object count (50..200) of the thesis, with the ground truth on every
@@ -19,21 +20,38 @@
 #   full: the thesis' protocol, 10 simulations, every frame (split it into shards on a cluster:
 #     README "Beyond one machine").
 # Each environment's cells are split into --jobs shares (default: the number of cores) run at
-# once with one backend thread each, into one run folder. A stopped run resumes where it stopped
-# when the same command is run again.
+# once with one backend thread each, into one run folder. A backend that needs GL runs one share
+# at a time unless --jobs is given: GL runs sharing one GPU slow each other down (8 at once on an
+# H100 made each frame 3.7-5.4x slower), which would be measured as CD time. A stopped run
+# resumes where it stopped when the same command is run again.
+# --env runs only the named environments of the primary backend (a rerun of one, say).
+# --out DIR writes into DIR instead of results/<profile> (e.g. one folder per machine).
+# --no-build runs build/cdbench as it is (a machine that has the binary and its libraries but
+# not the packages to build it); --no-report leaves the report for `scripts/report.py DIR
+# --primary NAME` on a machine with python3-matplotlib.
 # CDBENCH_ASSETS must name a folder with dragon_vrip_res3 (or run scripts/fetch-assets.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 profile=quick
 primary=cpu
 jobs=$(nproc)
+jobs_given=0
+out=
+envs=env1,env2,env3
+build=1
+report=1
 while (($#)); do
   case "$1" in
     quick|standard|full) profile=$1 ;;
     --visibility) primary=${2:?--visibility needs a backend name}; shift ;;
-    --jobs) jobs=${2:?--jobs needs a number}; shift ;;
+    --jobs) jobs=${2:?--jobs needs a number}; jobs_given=1; shift ;;
+    --out) out=${2:?--out needs a folder}; shift ;;
+    --env) envs=${2:?--env needs env1, env2 and/or env3}; shift ;;
+    --no-build) build=0 ;;
+    --no-report) report=0 ;;
     *)
-      echo "usage: scripts/reproduce.sh [quick|standard|full] [--visibility NAME] [--jobs N]" >&2
+      echo "usage: scripts/reproduce.sh [quick|standard|full] [--visibility NAME] [--jobs N]" \
+        "[--out DIR] [--env LIST] [--no-build] [--no-report]" >&2
       exit 2
       ;;
   esac
@@ -46,10 +64,12 @@ case "$profile" in
   full) common=() ;;
 esac
 
-bash scripts/setup.sh
-CDBENCH_BUILD_TARGETS=cdbench bash scripts/build.sh release
+if ((build)); then
+  bash scripts/setup.sh
+  CDBENCH_BUILD_TARGETS=cdbench bash scripts/build.sh release
+fi
 
-out=results/$profile
+out=${out:-results/$profile}
 mkdir -p "$out"
 start=$(date +%s)
 failed=()
@@ -58,11 +78,12 @@ failed=()
 run() {
   local backend=$1 env=$2
   shift 2
-  local dir=$out/$backend/$env pids=() status=0
-  echo "== $env on $backend ($profile)" >&2
-  for ((i = 1; i <= jobs; ++i)); do
+  local dir=$out/$backend/$env pids=() status=0 shares=$jobs
+  if ((!jobs_given)) && build/cdbench backends | grep -q "^$backend .*needs EGL"; then shares=1; fi
+  echo "== $env on $backend ($profile, $shares at once)" >&2
+  for ((i = 1; i <= shares; ++i)); do
     build/cdbench run "configs/$env.yaml" --visibility "$backend" --threads 1 --quiet \
-      --shard "$i/$jobs" --out "$dir" "$@" &
+      --shard "$i/$shares" --out "$dir" "$@" &
     pids+=($!)
   done
   for pid in "${pids[@]}"; do wait "$pid" || status=1; done
@@ -74,7 +95,10 @@ run() {
   ((status == 0)) || failed+=("$backend/$env")
 }
 
-for env in env1 env2 env3; do run "$primary" "$env" "${common[@]}"; done
+for env in ${envs//,/ }; do
+  [[ -f configs/$env.yaml ]] || { echo "reproduce: no configs/$env.yaml" >&2; exit 2; }
+  run "$primary" "$env" "${common[@]}"
+done
 if [[ $profile == standard ]]; then
   for backend in gl-flags gl-queries; do
     [[ $backend == "$primary" ]] && continue
@@ -91,8 +115,12 @@ if [[ $profile == standard ]]; then
     fi
   done
 fi
-/usr/bin/python3 scripts/report.py "$out" --primary "$primary"
-echo "reproduce: $profile done in $(( $(date +%s) - start )) s: $out/REPORT.md" >&2
+if ((report)); then
+  /usr/bin/python3 scripts/report.py "$out" --primary "$primary"
+  echo "reproduce: $profile done in $(( $(date +%s) - start )) s: $out/REPORT.md" >&2
+else
+  echo "reproduce: $profile runs done in $(( $(date +%s) - start )) s: $out" >&2
+fi
 if ((${#failed[@]})); then
   echo "reproduce: failed: ${failed[*]} (see the messages above; rerun to resume)" >&2
   exit 1
