@@ -18,13 +18,6 @@ double timedCullSeconds(CullingStrategy& strategy, const FrameInput& input) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::span<const Pose> framePoses(const RecordedScene& recorded, int frame, const std::string& scene) {
-  if (frame < 0 || static_cast<std::uint32_t>(frame) >= recorded.recording.frameCount())
-    throw InputError(scene + ": frame " + std::to_string(frame) + " out of the " +
-                     std::to_string(recorded.recording.frameCount()) + " simulated");
-  return recorded.recording.frame(static_cast<std::uint32_t>(frame));
-}
-
 struct TimedRound {
   double numerator = 0, denominator = 0;  // seconds
   [[nodiscard]] double ratio() const { return numerator / denominator; }
@@ -48,7 +41,7 @@ std::vector<RatioMeasurement> measureSpeedups(BackendResources& resources, const
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
-    const auto poses = framePoses(recorded, c.frame, c.scene.label());
+    const auto poses = recordedPoses(recorded, c.frame, c.scene.label());
     const auto owned = VisibilityBackendRegistry::builtin().create(
         backendName, resources, visibilityOptionsOf(recorded.config.culling));
     VisibilityBackend& backend = *owned;
@@ -87,7 +80,7 @@ std::vector<RatioMeasurement> measureFloors(BackendResources& resources, const s
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
-    (void)framePoses(recorded, c.frame, c.scene.label());
+    (void)recordedPoses(recorded, c.frame, c.scene.label());
     for (const auto& name : strategies) {
       FloorSetup setup(resources, backend, recorded, name, c.resolution, c.frame, registry);
       if (setup.work().draws == 0 && setup.work().queries == 0) {

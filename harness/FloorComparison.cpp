@@ -3,19 +3,11 @@
 #include <algorithm>
 #include <chrono>
 
-#include "core/Errors.h"
 #include "harness/BackendWarmUp.h"
 
 namespace cdb {
 
 namespace {
-
-std::span<const Pose> posesOf(const RecordedScene& recorded, int frame) {
-  if (frame < 0 || static_cast<std::uint32_t>(frame) >= recorded.recording.frameCount())
-    throw InputError("frame " + std::to_string(frame) + ": the recording has " +
-                     std::to_string(recorded.recording.frameCount()) + " frames");
-  return recorded.recording.frame(static_cast<std::uint32_t>(frame));
-}
 
 template <typename F>
 double secondsOf(F&& work) {
@@ -29,7 +21,7 @@ double secondsOf(F&& work) {
 VisibilityCounters recordCullWork(RecordingBackend& recorder, const RecordedScene& recorded,
                                   const std::string& strategyName, int resolution, int frame,
                                   const StrategyRegistry& registry) {
-  const auto poses = posesOf(recorded, frame);
+  const auto poses = recordedPoses(recorded, frame);
   StrategyOptions so;
   so.resolution = resolution;
   so.culling = recorded.config.culling;
@@ -47,7 +39,7 @@ FloorSetup::FloorSetup(BackendResources& resources, const std::string& backend,
                        const RecordedScene& recorded, const std::string& strategy, int resolution,
                        int frame, const StrategyRegistry& registry)
     : recorded_(recorded), frame_(frame) {
-  const auto poses = posesOf(recorded, frame);
+  const auto poses = recordedPoses(recorded, frame);
   const auto& backends = VisibilityBackendRegistry::builtin();
   const VisibilityOptions options = visibilityOptionsOf(recorded.config.culling);
   backend_ = backends.create(backend, resources, options);
@@ -70,7 +62,7 @@ FloorSetup::FloorSetup(BackendResources& resources, const std::string& backend,
 }
 
 double FloorSetup::timeCull() {
-  return secondsOf([&] { (void)strategy_->cull({posesOf(recorded_, frame_), frame_}); });
+  return secondsOf([&] { (void)strategy_->cull({recordedPoses(recorded_, frame_), frame_}); });
 }
 
 double FloorSetup::timeFloor() { return secondsOf([&] { floor_->replayOnce(); }); }
