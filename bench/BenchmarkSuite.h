@@ -29,14 +29,6 @@ namespace cdb::bench {
 inline constexpr int kResolutions[] = {256, 800};
 
 
-[[nodiscard]] inline StrategyOptions strategyOptions(const ScenarioConfig& config, int resolution) {
-  StrategyOptions options;
-  options.resolution = resolution;
-  options.culling = config.culling;
-  return options;
-}
-
-
 // Runs `body`, turning an exception (a missing dragon, no GL) into a skipped benchmark that
 // carries its message, so that one unavailable environment does not stop the suite.
 template <class Body>

@@ -29,12 +29,10 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
   const RecordedScene& recorded = frames.recorded(environment);
   const auto poses = frames.poses(environment);
   const int frame = frames.measured(environment).frame;
-  const auto backend = VisibilityBackendRegistry::builtin().create(
-      backendName, frames.resources(), visibilityOptionsOf(recorded.config.culling));
-  backend->attachScene(recorded.scene);
-  warmUpBackend(*backend, recorded.scene, poses, resolution);
-  auto strategy = StrategyRegistry::builtin().create(strategyName,
-                                                     strategyOptions(recorded.config, resolution));
+  const auto backend = warmedUpBackend(frames.resources(), backendName, recorded.config.culling,
+                                       recorded.scene, poses, resolution);
+  auto strategy = StrategyRegistry::builtin().create(
+      strategyName, StrategyOptions{resolution, recorded.config.culling});
   strategy->attach(recorded.scene, *backend);
   ExactPhase exact(recorded.scene);
   (void)detectFrame(*strategy, exact, poses, frame);

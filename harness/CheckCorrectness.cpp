@@ -36,10 +36,7 @@ std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const 
       const bool drawsNothing = !registry.usesBackend(name);
       if (drawsNothing && !withPeers) continue;
       for (int resolution : c.resolutions) {
-        StrategyOptions options;
-        options.resolution = resolution;
-        options.culling = recorded.config.culling;
-        auto strategy = registry.create(name, options);
+        auto strategy = registry.create(name, StrategyOptions{resolution, recorded.config.culling});
         strategy->attach(scene, *backend);
         warmUpBackend(*backend, scene, recorded.recording.frame(0), resolution);
         for (std::size_t i = 0; i < c.frames.size(); ++i) {
