@@ -17,7 +17,7 @@ namespace cdb::testing {
 class BoxGeometricOracle {
  public:
   BoxGeometricOracle()
-      : oracle_([this](const OracleCall& q, std::span<const OracleCall> written) {
+      : oracle_([this](const VisibilityCall& q, std::span<const VisibilityCall> written) {
           return decide(q, written);
         }) {}
   BoxGeometricOracle(const BoxGeometricOracle&) = delete;
@@ -36,13 +36,13 @@ class BoxGeometricOracle {
   Eigen::Vector3d currentDirection() const {
     const auto& log = oracle_.log();
     for (auto it = log.rbegin(); it != log.rend(); ++it)
-      if (it->kind == OracleCall::Kind::BeginPass) return it->view.direction;
+      if (it->kind == VisibilityCall::Kind::BeginPass) return it->view.direction;
     ADD_FAILURE() << "query outside a pass";
     return Eigen::Vector3d::UnitZ();
   }
 
-  bool decide(const OracleCall& q, std::span<const OracleCall> written) const {
-    EXPECT_EQ(q.kind, OracleCall::Kind::QueryBox) << "this oracle decides boxes only";
+  bool decide(const VisibilityCall& q, std::span<const VisibilityCall> written) const {
+    EXPECT_EQ(q.kind, VisibilityCall::Kind::QueryBox) << "this oracle decides boxes only";
     const Eigen::Vector3d d = currentDirection();
     int axis = 0;
     d.cwiseAbs().maxCoeff(&axis);
@@ -50,7 +50,7 @@ class BoxGeometricOracle {
     const Aabb qb = worldBox(q.object, q.box);
     const double qFar = projectAabb(qb, d).second;
     for (const auto& w : written) {
-      EXPECT_EQ(w.kind, OracleCall::Kind::WriteBox) << "this oracle decides boxes only";
+      EXPECT_EQ(w.kind, VisibilityCall::Kind::WriteBox) << "this oracle decides boxes only";
       EXPECT_NE(w.object, q.object) << "an object's node queried after one of its own was written";
       const Aabb wb = worldBox(w.object, w.box);
       bool imageOverlap = true;

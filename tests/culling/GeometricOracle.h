@@ -26,7 +26,7 @@ class GeometricOracle {
   };
 
   explicit GeometricOracle(const SceneGeometry& scene)
-      : scene_(scene), oracle_([this](const OracleCall& q, std::span<const OracleCall> written) {
+      : scene_(scene), oracle_([this](const VisibilityCall& q, std::span<const VisibilityCall> written) {
           return decide(q, written);
         }) {}
   GeometricOracle(const GeometricOracle&) = delete;
@@ -54,12 +54,12 @@ class GeometricOracle {
   }
 
  private:
-  Aabb boxOf(const OracleCall& c) const {
+  Aabb boxOf(const VisibilityCall& c) const {
     std::vector<std::uint32_t> tris;
-    if (c.kind == OracleCall::Kind::WriteTriangles) {
+    if (c.kind == VisibilityCall::Kind::WriteTriangles) {
       tris = c.triangles;
     } else {
-      EXPECT_TRUE(c.kind == OracleCall::Kind::QueryRange || c.kind == OracleCall::Kind::WriteRange)
+      EXPECT_TRUE(c.kind == VisibilityCall::Kind::QueryRange || c.kind == VisibilityCall::Kind::WriteRange)
           << "the geometric oracle decides mesh pieces only";
       for (std::uint32_t t = 0; t < c.range.triangleCount; ++t)
         tris.push_back(c.range.firstTriangle + t);
@@ -70,12 +70,12 @@ class GeometricOracle {
   Eigen::Vector3d currentDirection() const {
     const auto& log = oracle_.log();
     for (auto it = log.rbegin(); it != log.rend(); ++it)
-      if (it->kind == OracleCall::Kind::BeginPass) return it->view.direction;
+      if (it->kind == VisibilityCall::Kind::BeginPass) return it->view.direction;
     ADD_FAILURE() << "query outside a pass";
     return Eigen::Vector3d::UnitZ();
   }
 
-  bool decide(const OracleCall& q, std::span<const OracleCall> written) {
+  bool decide(const VisibilityCall& q, std::span<const VisibilityCall> written) {
     const Eigen::Vector3d d = currentDirection();
     int axis = 0;
     d.cwiseAbs().maxCoeff(&axis);
