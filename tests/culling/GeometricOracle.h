@@ -1,17 +1,14 @@
 #pragma once
 // A scripted oracle that decides "fully visible" from the geometry instead of a script of answers:
-// each queried or written piece stands for the world AABB of its triangles, and the queried piece
-// is fully visible iff, for every piece written earlier in the pass whose box overlaps it in the
-// image plane, it lies entirely in front (strictly nearer along the view). Views must be along an
-// axis. Exact for boxes, and conservative for any content of the boxes: pieces that touch are
-// never fully visible with respect to each other.
+// each queried or written piece stands for the world AABB of its triangles, decided as
+// AxisViewOcclusion.h says. Exact for boxes, and conservative for any content of the boxes: pieces
+// that touch are never fully visible with respect to each other.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <span>
 #include <vector>
 
-#include "culling/SortedIntervals.h"
+#include "AxisViewOcclusion.h"
 #include "culling/visibility/ScriptedVisibilityOracle.h"
 
 namespace cdb::testing {
@@ -67,32 +64,9 @@ class GeometricOracle {
     return pieceBox(c.object, tris);
   }
 
-  Eigen::Vector3d currentDirection() const {
-    const auto& log = oracle_.log();
-    for (auto it = log.rbegin(); it != log.rend(); ++it)
-      if (it->kind == VisibilityCall::Kind::BeginPass) return it->view.direction;
-    ADD_FAILURE() << "query outside a pass";
-    return Eigen::Vector3d::UnitZ();
-  }
-
   bool decide(const VisibilityCall& q, std::span<const VisibilityCall> written) {
-    const Eigen::Vector3d d = currentDirection();
-    int axis = 0;
-    d.cwiseAbs().maxCoeff(&axis);
-    EXPECT_DOUBLE_EQ(std::abs(d[axis]), 1.0) << "views must be along an axis";
-    const Aabb qb = boxOf(q);
-    const double qFar = projectAabb(qb, d).second;
-    bool visible = true;
-    for (const auto& w : written) {
-      const Aabb wb = boxOf(w);
-      bool imageOverlap = true;
-      for (int k = 0; k < 3; ++k)
-        if (k != axis && (qb.min()[k] > wb.max()[k] || wb.min()[k] > qb.max()[k])) imageOverlap = false;
-      if (imageOverlap && !(qFar < projectAabb(wb, d).first)) {
-        visible = false;
-        break;
-      }
-    }
+    const bool visible = fullyVisibleAlongAxis(oracle_, boxOf(q), written,
+                                               [this](const VisibilityCall& w) { return boxOf(w); });
     const bool whole = q.range.firstTriangle == 0 &&
                        q.range.triangleCount == scene_.meshOf(q.object).triangleCount();
     answers_.push_back({q.pass, q.object, whole, visible});

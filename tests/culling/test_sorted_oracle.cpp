@@ -223,13 +223,8 @@ TEST(SortedOracle, KeepsEveryTouchingPairOfTrianglesOnRandomBoxes) {
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> centre(0.0, 4.0), half(0.2, 0.8);
-    std::vector<Aabb> boxes;
-    for (int i = 0; i < 14; ++i) {
-      const Eigen::Vector3d c(centre(rng), centre(rng), centre(rng));
-      const Eigen::Vector3d h(half(rng), half(rng), half(rng));
-      boxes.emplace_back(c - h, c + h);
-    }
+    const std::vector<Aabb> boxes = testing::randomBoxes(rng, 14, 4.0);
+    std::uniform_real_distribution<double> half(0.2, 0.8);  // the second frame's moves
     auto s = testing::boxScene(boxes);
     testing::GeometricOracle g(s.scene);
     DepthSortedCulling sorted(StrategyOptions{});
