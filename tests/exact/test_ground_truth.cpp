@@ -53,7 +53,7 @@ TEST(GroundTruth, MatchesBruteForceWithMixedMeshes) {
   s.scene.objects.push_back({2, false, "empty"});
   std::mt19937_64 rng(5);
   for (auto& poses : s.frames)
-    for (int k = 0; k < 3; ++k) poses.push_back(testing::randomPose(rng, 1.0));
+    for (int k = 0; k < 3; ++k) poses.push_back(testing::randomPose(rng, 0.0, 1.0));
   const GroundTruth truth(s.scene);
   for (const auto& poses : s.frames) {
     const CollisionReport expected = bruteForce(s.scene, poses);
