@@ -74,19 +74,14 @@ void registerCullBenchmarks(RecordedFrames& frames) {
           !StrategyRegistry::builtin().usesBackend(strategy) ? std::vector<std::string>{"-"} : frames.backends();
       for (const std::string& backend : backends)
         for (int resolution : kResolutions) {
-          const std::string name = "cull/" + m.environment + "/" + strategy + "/" + backend +
-                                   "/res:" + std::to_string(resolution);
-          benchmark::RegisterBenchmark(
-              name.c_str(),
-              [&frames, environment = m.environment, strategy, backend,
-               resolution](benchmark::State& state) {
-                skipOnError(state, [&] {
-                  const std::string runsOn =
-                      backend == "-" ? std::string(VisibilityBackendRegistry::kDefault) : backend;
-                  cullMeasuredFrame(state, frames, environment, strategy, runsOn, resolution);
-                });
-              })
-              ->Unit(benchmark::kMillisecond)
+          const std::string runsOn =
+              backend == "-" ? std::string(VisibilityBackendRegistry::kDefault) : backend;
+          registerMilliseconds(cellName("cull", m.environment, strategy, backend, resolution),
+                               [&frames, environment = m.environment, strategy, runsOn,
+                                resolution](benchmark::State& state) {
+                                 cullMeasuredFrame(state, frames, environment, strategy, runsOn,
+                                                   resolution);
+                               })
               ->UseManualTime();
         }
     }

@@ -82,22 +82,16 @@ void runExactPhase(benchmark::State& state, const SceneGeometry& scene, std::spa
 void registerExactPhaseBenchmarks(RecordedFrames& frames) {
   for (const MeasuredFrame& m : frames.frames()) {
     const std::string prefix = "exact/" + m.environment;
-    benchmark::RegisterBenchmark((prefix + "/ours_sets").c_str(), [&frames,
-                                                                   environment = m.environment](
-                                                                      benchmark::State& state) {
-      skipOnError(state, [&] {
-        const PotentiallyCollidingSets& sets = oursSets(frames, environment);
-        runExactPhase(state, frames.recorded(environment).scene, frames.poses(environment), sets);
-      });
-    })->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark((prefix + "/all_pairs_sets").c_str(), [&frames,
-                                                                        environment = m.environment](
-                                                                           benchmark::State& state) {
-      skipOnError(state, [&] {
-        runExactPhase(state, frames.recorded(environment).scene, frames.poses(environment),
-                      allPairsSets(frames, environment));
-      });
-    })->Unit(benchmark::kMillisecond);
+    registerMilliseconds(prefix + "/ours_sets", [&frames, environment = m.environment](
+                                                    benchmark::State& state) {
+      const PotentiallyCollidingSets& sets = oursSets(frames, environment);
+      runExactPhase(state, frames.recorded(environment).scene, frames.poses(environment), sets);
+    });
+    registerMilliseconds(prefix + "/all_pairs_sets", [&frames, environment = m.environment](
+                                                         benchmark::State& state) {
+      runExactPhase(state, frames.recorded(environment).scene, frames.poses(environment),
+                    allPairsSets(frames, environment));
+    });
   }
 }
 
