@@ -52,4 +52,12 @@ inline Mesh unitCube() {
   return m;
 }
 
+// `count` objects of one unitCube() mesh, each at the origin until a test poses it.
+inline SceneGeometry unitCubes(int count) {
+  SceneGeometry scene;
+  scene.meshes.push_back(unitCube());
+  for (int i = 0; i < count; ++i) scene.objects.push_back({0, false, "cube"});
+  return scene;
+}
+
 }  // namespace cdb::testing

@@ -64,9 +64,7 @@ TEST(GroundTruth, MatchesBruteForceWithMixedMeshes) {
 }
 
 TEST(GroundTruth, CubesSharingAFaceTouch) {
-  SceneGeometry scene;
-  scene.meshes.push_back(testing::unitCube());
-  for (int i = 0; i < 3; ++i) scene.objects.push_back({0, false, "cube"});
+  const SceneGeometry scene = testing::unitCubes(3);
   std::vector<Pose> poses(3);
   poses[1].translation = {1, 0, 0};          // face to face with cube 0
   poses[2].translation = {2 + 1e-12, 0, 0};  // 1e-12 away from cube 1
