@@ -16,7 +16,9 @@
 // calling thread's CPU time misses most of it. Google Benchmark's default --benchmark_min_time
 // (0.5 s) keeps a heavy cell to one iteration: a cull of env2 by CULLIDE takes minutes.
 #include <exception>
+#include <string>
 #include <string_view>
+#include <utility>
 
 #include <benchmark/benchmark.h>
 
@@ -29,14 +31,6 @@ namespace cdb::bench {
 inline constexpr int kResolutions[] = {256, 800};
 
 
-[[nodiscard]] inline StrategyOptions strategyOptions(const ScenarioConfig& config, int resolution) {
-  StrategyOptions options;
-  options.resolution = resolution;
-  options.culling = config.culling;
-  return options;
-}
-
-
 // Runs `body`, turning an exception (a missing dragon, no GL) into a skipped benchmark that
 // carries its message, so that one unavailable environment does not stop the suite.
 template <class Body>
@@ -46,6 +40,22 @@ void skipOnError(benchmark::State& state, Body&& body) {
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
   }
+}
+
+// Registers the benchmark `name`, reported in milliseconds, whose body runs under skipOnError.
+template <class Body>
+auto* registerMilliseconds(const std::string& name, Body body) {
+  return benchmark::RegisterBenchmark(name.c_str(), [body = std::move(body)](benchmark::State& state) {
+           skipOnError(state, [&] { body(state); });
+         })->Unit(benchmark::kMillisecond);
+}
+
+// The name of a strategy's cell: `<kind>/<env>/<strategy>/<backend>/res:<r>`.
+[[nodiscard]] inline std::string cellName(std::string_view kind, const std::string& environment,
+                                          const std::string& strategy, const std::string& backend,
+                                          int resolution) {
+  return std::string(kind) + "/" + environment + "/" + strategy + "/" + backend +
+         "/res:" + std::to_string(resolution);
 }
 
 // Per-iteration counters: the sum over the iterations, divided by their number when reported.

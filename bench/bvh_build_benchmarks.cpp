@@ -54,9 +54,7 @@ void buildTree(benchmark::State& state, RecordedFrames& frames, const MeshOfEnvi
 void registerBvhBuildBenchmarks(RecordedFrames& frames) {
   for (const MeshOfEnvironment& m : kMeshes) {
     const std::string name = std::string("bvh_build/") + m.mesh + "/" + m.environment;
-    benchmark::RegisterBenchmark(name.c_str(), [&frames, &m](benchmark::State& state) {
-      skipOnError(state, [&] { buildTree(state, frames, m); });
-    })->Unit(benchmark::kMillisecond);
+    registerMilliseconds(name, [&frames, &m](benchmark::State& state) { buildTree(state, frames, m); });
   }
 }
 

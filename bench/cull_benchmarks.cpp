@@ -29,12 +29,10 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
   const RecordedScene& recorded = frames.recorded(environment);
   const auto poses = frames.poses(environment);
   const int frame = frames.measured(environment).frame;
-  const auto backend = VisibilityBackendRegistry::builtin().create(
-      backendName, frames.resources(), visibilityOptionsOf(recorded.config.culling));
-  backend->attachScene(recorded.scene);
-  warmUpBackend(*backend, recorded.scene, poses, resolution);
-  auto strategy = StrategyRegistry::builtin().create(strategyName,
-                                                     strategyOptions(recorded.config, resolution));
+  const auto backend = warmedUpBackend(frames.resources(), backendName, recorded.config.culling,
+                                       recorded.scene, poses, resolution);
+  auto strategy = StrategyRegistry::builtin().create(
+      strategyName, StrategyOptions{resolution, recorded.config.culling});
   strategy->attach(recorded.scene, *backend);
   ExactPhase exact(recorded.scene);
   (void)detectFrame(*strategy, exact, poses, frame);
@@ -76,19 +74,14 @@ void registerCullBenchmarks(RecordedFrames& frames) {
           !StrategyRegistry::builtin().usesBackend(strategy) ? std::vector<std::string>{"-"} : frames.backends();
       for (const std::string& backend : backends)
         for (int resolution : kResolutions) {
-          const std::string name = "cull/" + m.environment + "/" + strategy + "/" + backend +
-                                   "/res:" + std::to_string(resolution);
-          benchmark::RegisterBenchmark(
-              name.c_str(),
-              [&frames, environment = m.environment, strategy, backend,
-               resolution](benchmark::State& state) {
-                skipOnError(state, [&] {
-                  const std::string runsOn =
-                      backend == "-" ? std::string(VisibilityBackendRegistry::kDefault) : backend;
-                  cullMeasuredFrame(state, frames, environment, strategy, runsOn, resolution);
-                });
-              })
-              ->Unit(benchmark::kMillisecond)
+          const std::string runsOn =
+              backend == "-" ? std::string(VisibilityBackendRegistry::kDefault) : backend;
+          registerMilliseconds(cellName("cull", m.environment, strategy, backend, resolution),
+                               [&frames, environment = m.environment, strategy, runsOn,
+                                resolution](benchmark::State& state) {
+                                 cullMeasuredFrame(state, frames, environment, strategy, runsOn,
+                                                   resolution);
+                               })
               ->UseManualTime();
         }
     }

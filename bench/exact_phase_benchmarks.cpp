@@ -37,7 +37,7 @@ const PotentiallyCollidingSets& oursSets(RecordedFrames& frames, const std::stri
   backend.attachScene(recorded.scene);
   warmUpBackend(backend, recorded.scene, input.poses, kSetsResolution);
   auto ours =
-      StrategyRegistry::builtin().create("ours", strategyOptions(recorded.config, kSetsResolution));
+      StrategyRegistry::builtin().create("ours", StrategyOptions{kSetsResolution, recorded.config.culling});
   ours->attach(recorded.scene, backend);
   (void)ours->cull(input);  // the sets of a strategy that has seen a frame before, as timed
   return kept.emplace(environment, ours->cull(input).sets).first->second;
@@ -47,7 +47,7 @@ const PotentiallyCollidingSets& oursSets(RecordedFrames& frames, const std::stri
 PotentiallyCollidingSets allPairsSets(RecordedFrames& frames, const std::string& environment) {
   const RecordedScene& recorded = frames.recorded(environment);
   auto reference =
-      StrategyRegistry::builtin().create("all_pairs", strategyOptions(recorded.config, kSetsResolution));
+      StrategyRegistry::builtin().create("all_pairs", StrategyOptions{kSetsResolution, recorded.config.culling});
   const auto backend = VisibilityBackendRegistry::builtin().create(
       backendNameOf(recorded.config.culling), frames.resources(), {});
   reference->attach(recorded.scene, *backend);
@@ -82,22 +82,16 @@ void runExactPhase(benchmark::State& state, const SceneGeometry& scene, std::spa
 void registerExactPhaseBenchmarks(RecordedFrames& frames) {
   for (const MeasuredFrame& m : frames.frames()) {
     const std::string prefix = "exact/" + m.environment;
-    benchmark::RegisterBenchmark((prefix + "/ours_sets").c_str(), [&frames,
-                                                                   environment = m.environment](
-                                                                      benchmark::State& state) {
-      skipOnError(state, [&] {
-        const PotentiallyCollidingSets& sets = oursSets(frames, environment);
-        runExactPhase(state, frames.recorded(environment).scene, frames.poses(environment), sets);
-      });
-    })->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark((prefix + "/all_pairs_sets").c_str(), [&frames,
-                                                                        environment = m.environment](
-                                                                           benchmark::State& state) {
-      skipOnError(state, [&] {
-        runExactPhase(state, frames.recorded(environment).scene, frames.poses(environment),
-                      allPairsSets(frames, environment));
-      });
-    })->Unit(benchmark::kMillisecond);
+    registerMilliseconds(prefix + "/ours_sets", [&frames, environment = m.environment](
+                                                    benchmark::State& state) {
+      const PotentiallyCollidingSets& sets = oursSets(frames, environment);
+      runExactPhase(state, frames.recorded(environment).scene, frames.poses(environment), sets);
+    });
+    registerMilliseconds(prefix + "/all_pairs_sets", [&frames, environment = m.environment](
+                                                         benchmark::State& state) {
+      runExactPhase(state, frames.recorded(environment).scene, frames.poses(environment),
+                    allPairsSets(frames, environment));
+    });
   }
 }
 

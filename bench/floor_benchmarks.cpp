@@ -45,20 +45,14 @@ void registerFloorBenchmarks(RecordedFrames& frames) {
     for (const std::string& strategy : StrategyRegistry::builtin().names()) {
       if (!StrategyRegistry::builtin().usesBackend(strategy)) continue;
       for (const std::string& backend : frames.backends())
-        for (int resolution : kResolutions) {
-          const std::string name = "floor/" + m.environment + "/" + strategy + "/" + backend +
-                                   "/res:" + std::to_string(resolution);
-          benchmark::RegisterBenchmark(
-              name.c_str(),
-              [&frames, environment = m.environment, strategy, backend,
-               resolution](benchmark::State& state) {
-                skipOnError(state, [&] {
-                  replayRecordedCull(state, frames, environment, strategy, backend, resolution);
-                });
-              })
-              ->Unit(benchmark::kMillisecond)
+        for (int resolution : kResolutions)
+          registerMilliseconds(cellName("floor", m.environment, strategy, backend, resolution),
+                               [&frames, environment = m.environment, strategy, backend,
+                                resolution](benchmark::State& state) {
+                                 replayRecordedCull(state, frames, environment, strategy, backend,
+                                                    resolution);
+                               })
               ->UseRealTime();
-        }
     }
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/Aabb.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 
 namespace cdb {
 
@@ -34,6 +35,18 @@ void warmUpBackend(VisibilityBackend& backend, const SceneGeometry& scene,
     backend.writeBoxes(0, std::span<const OrientedBox>(&box, 1));
   }
   backend.fetchResults(answers);
+}
+
+std::unique_ptr<VisibilityBackend> warmedUpBackend(BackendResources& resources,
+                                                   const std::string& backend,
+                                                   const CullingSpec& culling,
+                                                   const SceneGeometry& scene,
+                                                   std::span<const Pose> poses, int resolution) {
+  auto created =
+      VisibilityBackendRegistry::builtin().create(backend, resources, visibilityOptionsOf(culling));
+  created->attachScene(scene);
+  warmUpBackend(*created, scene, poses, resolution);
+  return created;
 }
 
 }  // namespace cdb

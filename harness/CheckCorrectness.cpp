@@ -1,6 +1,5 @@
 #include "harness/CheckCorrectness.h"
 
-#include "core/Errors.h"
 #include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
@@ -17,10 +16,7 @@ std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const 
   std::vector<CorrectnessRow> rows;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
-    for (int f : c.frames)
-      if (f < 0 || static_cast<std::uint32_t>(f) >= recorded.recording.frameCount())
-        throw InputError(c.scene.label() + ": frame " + std::to_string(f) + " out of the " +
-                         std::to_string(recorded.recording.frameCount()) + " simulated");
+    for (int f : c.frames) (void)recordedPoses(recorded, f, c.scene.label());
     const SceneGeometry& scene = recorded.scene;
     const auto backend = VisibilityBackendRegistry::builtin().create(
         backendName, resources, visibilityOptionsOf(recorded.config.culling));
@@ -40,10 +36,7 @@ std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const 
       const bool drawsNothing = !registry.usesBackend(name);
       if (drawsNothing && !withPeers) continue;
       for (int resolution : c.resolutions) {
-        StrategyOptions options;
-        options.resolution = resolution;
-        options.culling = recorded.config.culling;
-        auto strategy = registry.create(name, options);
+        auto strategy = registry.create(name, StrategyOptions{resolution, recorded.config.culling});
         strategy->attach(scene, *backend);
         warmUpBackend(*backend, scene, recorded.recording.frame(0), resolution);
         for (std::size_t i = 0; i < c.frames.size(); ++i) {

@@ -4,7 +4,6 @@
 #include <chrono>
 
 #include "core/Errors.h"
-#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/BackendWarmUp.h"
 #include "harness/FloorComparison.h"
 
@@ -16,13 +15,6 @@ double timedCullSeconds(CullingStrategy& strategy, const FrameInput& input) {
   const auto t0 = std::chrono::steady_clock::now();
   (void)strategy.cull(input);
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-std::span<const Pose> framePoses(const RecordedScene& recorded, int frame, const std::string& scene) {
-  if (frame < 0 || static_cast<std::uint32_t>(frame) >= recorded.recording.frameCount())
-    throw InputError(scene + ": frame " + std::to_string(frame) + " out of the " +
-                     std::to_string(recorded.recording.frameCount()) + " simulated");
-  return recorded.recording.frame(static_cast<std::uint32_t>(frame));
 }
 
 struct TimedRound {
@@ -48,15 +40,11 @@ std::vector<RatioMeasurement> measureSpeedups(BackendResources& resources, const
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
-    const auto poses = framePoses(recorded, c.frame, c.scene.label());
-    const auto owned = VisibilityBackendRegistry::builtin().create(
-        backendName, resources, visibilityOptionsOf(recorded.config.culling));
+    const auto poses = recordedPoses(recorded, c.frame, c.scene.label());
+    const auto owned = warmedUpBackend(resources, backendName, recorded.config.culling,
+                                       recorded.scene, poses, c.resolution);
     VisibilityBackend& backend = *owned;
-    backend.attachScene(recorded.scene);
-    warmUpBackend(backend, recorded.scene, poses, c.resolution);
-    StrategyOptions options;
-    options.resolution = c.resolution;
-    options.culling = recorded.config.culling;
+    const StrategyOptions options{c.resolution, recorded.config.culling};
     auto slow = registry.create(c.baseline, options);
     auto fast = registry.create(c.strategy, options);
     slow->attach(recorded.scene, backend);
@@ -87,7 +75,7 @@ std::vector<RatioMeasurement> measureFloors(BackendResources& resources, const s
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
-    (void)framePoses(recorded, c.frame, c.scene.label());
+    (void)recordedPoses(recorded, c.frame, c.scene.label());
     for (const auto& name : strategies) {
       FloorSetup setup(resources, backend, recorded, name, c.resolution, c.frame, registry);
       if (setup.work().draws == 0 && setup.work().queries == 0) {
@@ -95,22 +83,13 @@ std::vector<RatioMeasurement> measureFloors(BackendResources& resources, const s
           withoutFloor.push_back(name);
         continue;
       }
-      const auto replaySeconds = [&] {
-        const double s = setup.timeFloor();
-        // A replay that answers differently did not do the strategy's work: no ratio to trust.
-        if (!setup.answersMatch())
-          throw RunError(backend + ": " + c.key(name) + ": the replayed work answered the queries differently");
-        return s;
-      };
       std::vector<TimedRound> rounds(static_cast<std::size_t>(std::max(c.rounds, 1)));
       for (std::size_t r = 0; r < rounds.size(); ++r) {
-        if (r % 2 == 0) {
-          rounds[r].numerator = setup.timeCull();
-          rounds[r].denominator = replaySeconds();
-        } else {
-          rounds[r].denominator = replaySeconds();
-          rounds[r].numerator = setup.timeCull();
-        }
+        const FloorSetup::Round round = setup.timeRound(r % 2 == 1);
+        // A replay that answers differently did not do the strategy's work: no ratio to trust.
+        if (!round.answersMatch)
+          throw RunError(backend + ": " + c.key(name) + ": the replayed work answered the queries differently");
+        rounds[r] = {round.cullSeconds, round.floorSeconds};
       }
       out.push_back(medianRound(std::move(rounds), backend, c.key(name), RatioKind::OverFloor));
     }

@@ -3,19 +3,11 @@
 #include <algorithm>
 #include <chrono>
 
-#include "core/Errors.h"
 #include "harness/BackendWarmUp.h"
 
 namespace cdb {
 
 namespace {
-
-std::span<const Pose> posesOf(const RecordedScene& recorded, int frame) {
-  if (frame < 0 || static_cast<std::uint32_t>(frame) >= recorded.recording.frameCount())
-    throw InputError("frame " + std::to_string(frame) + ": the recording has " +
-                     std::to_string(recorded.recording.frameCount()) + " frames");
-  return recorded.recording.frame(static_cast<std::uint32_t>(frame));
-}
 
 template <typename F>
 double secondsOf(F&& work) {
@@ -24,18 +16,26 @@ double secondsOf(F&& work) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// A new `name` on `backend` that has culled `frame` once, so that a strategy keeping state across
+// frames (sorted lists, hierarchies) meets the frame as it would in a run.
+std::unique_ptr<CullingStrategy> strategyAfterOneCull(const StrategyRegistry& registry,
+                                                      const std::string& name,
+                                                      const RecordedScene& recorded, int resolution,
+                                                      VisibilityBackend& backend, int frame) {
+  auto strategy = registry.create(name, StrategyOptions{resolution, recorded.config.culling});
+  strategy->attach(recorded.scene, backend);
+  (void)strategy->cull({recordedPoses(recorded, frame), frame});
+  return strategy;
+}
+
 }  // namespace
 
 VisibilityCounters recordCullWork(RecordingBackend& recorder, const RecordedScene& recorded,
                                   const std::string& strategyName, int resolution, int frame,
                                   const StrategyRegistry& registry) {
-  const auto poses = posesOf(recorded, frame);
-  StrategyOptions so;
-  so.resolution = resolution;
-  so.culling = recorded.config.culling;
-  auto strategy = registry.create(strategyName, so);
-  strategy->attach(recorded.scene, recorder);
-  (void)strategy->cull({poses, frame});
+  const auto poses = recordedPoses(recorded, frame);
+  const auto strategy =
+      strategyAfterOneCull(registry, strategyName, recorded, resolution, recorder, frame);
   recorder.clear();
   recorder.attachScene(recorded.scene);
   recorder.resetCounters();
@@ -47,33 +47,38 @@ FloorSetup::FloorSetup(BackendResources& resources, const std::string& backend,
                        const RecordedScene& recorded, const std::string& strategy, int resolution,
                        int frame, const StrategyRegistry& registry)
     : recorded_(recorded), frame_(frame) {
-  const auto poses = posesOf(recorded, frame);
-  const auto& backends = VisibilityBackendRegistry::builtin();
-  const VisibilityOptions options = visibilityOptionsOf(recorded.config.culling);
-  backend_ = backends.create(backend, resources, options);
-  backend_->attachScene(recorded.scene);
-  warmUpBackend(*backend_, recorded.scene, poses, resolution);
+  backend_ = warmedUpBackend(resources, backend, recorded.config.culling, recorded.scene,
+                             recordedPoses(recorded, frame), resolution);
   recorder_ = std::make_unique<RecordingBackend>(*backend_);
   work_ = recordCullWork(*recorder_, recorded, strategy, resolution, frame, registry);
 
   // The strategy alone, on the bare backend, with the same history.
-  StrategyOptions so;
-  so.resolution = resolution;
-  so.culling = recorded.config.culling;
-  strategy_ = registry.create(strategy, so);
-  strategy_->attach(recorded.scene, *backend_);
-  (void)strategy_->cull({poses, frame});
+  strategy_ = strategyAfterOneCull(registry, strategy, recorded, resolution, *backend_, frame);
 
-  floor_ = backends.createFloor(backend, resources, options);
+  floor_ = VisibilityBackendRegistry::builtin().createFloor(
+      backend, resources, visibilityOptionsOf(recorded.config.culling));
   floor_->prepare(recorder_->ops());
   floor_->replayOnce();
 }
 
 double FloorSetup::timeCull() {
-  return secondsOf([&] { (void)strategy_->cull({posesOf(recorded_, frame_), frame_}); });
+  return secondsOf([&] { (void)strategy_->cull({recordedPoses(recorded_, frame_), frame_}); });
 }
 
 double FloorSetup::timeFloor() { return secondsOf([&] { floor_->replayOnce(); }); }
+
+FloorSetup::Round FloorSetup::timeRound(bool floorFirst) {
+  Round r;
+  if (floorFirst) {
+    r.floorSeconds = timeFloor();
+    r.cullSeconds = timeCull();
+  } else {
+    r.cullSeconds = timeCull();
+    r.floorSeconds = timeFloor();
+  }
+  r.answersMatch = answersMatch();
+  return r;
+}
 
 FloorComparison compareWithFloor(BackendResources& resources, const std::string& backend,
                                  const RecordedScene& recorded, const std::string& strategyName,
@@ -87,9 +92,10 @@ FloorComparison compareWithFloor(BackendResources& resources, const std::string&
   c.strategyBestSeconds = c.floorBestSeconds = 1e300;
   for (int r = 0; r < repeats; ++r) {
     // In turn, so that both sides of a round see the same load on a shared machine.
-    const double cull = setup.timeCull();
-    const double floor = setup.timeFloor();
-    c.answersMatch = c.answersMatch && setup.answersMatch();
+    const FloorSetup::Round round = setup.timeRound();
+    const double cull = round.cullSeconds;
+    const double floor = round.floorSeconds;
+    c.answersMatch = c.answersMatch && round.answersMatch;
     c.strategyBestSeconds = std::min(c.strategyBestSeconds, cull);
     c.floorBestSeconds = std::min(c.floorBestSeconds, floor);
     c.strategyMeanSeconds += cull / repeats;

@@ -47,6 +47,13 @@ class FloorSetup {
   double timeCull();
   // One replay of the recorded work, in seconds.
   double timeFloor();
+  // A cull and a replay in turn, so that both see the same load on a shared machine; a caller
+  // alternating `floorFirst` between rounds evens out load that drifts within a round.
+  struct Round {
+    double cullSeconds = 0, floorSeconds = 0;
+    bool answersMatch = true;  // whether the replay answered as the strategy's run did
+  };
+  Round timeRound(bool floorFirst = false);
   // Whether the latest replay answered as the strategy's run did.
   [[nodiscard]] bool answersMatch() const { return floor_->answersMatch(); }
   // The recorded cull's work; no queries and no draws for a strategy that draws nothing (the CPU

@@ -2,7 +2,9 @@
 // A scenario config simulated once and kept in memory: the scene and every frame's poses, so that
 // benchmarks and checks run strategies on exactly the frames a `cdbench run` would measure.
 #include <filesystem>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scenes/PoseRecording.h"
@@ -22,5 +24,10 @@ struct RecordedScene {
 // `--assets` (CDBENCH_ASSETS and <repo>/assets follow). Throws InputError for a bad config or mesh.
 [[nodiscard]] RecordedScene recordScene(const std::filesystem::path& configPath, int objects = 0,
                                         int frames = 0, const std::vector<std::string>& assetDirs = {});
+
+// The poses of `frame` of `recorded`. Throws InputError, prefixed by `scene` when given, for a frame
+// the recording does not hold (checks and floor comparisons take frame numbers from their input).
+[[nodiscard]] std::span<const Pose> recordedPoses(const RecordedScene& recorded, int frame,
+                                                  std::string_view scene = {});
 
 }  // namespace cdb

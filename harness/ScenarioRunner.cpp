@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/Errors.h"
+#include "core/Fnv1a.h"
 #include "culling/StrategyRegistry.h"
 #include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
@@ -26,7 +27,6 @@
 #include "render/HeadlessGlContext.h"
 #include "scenes/AssetPath.h"
 #include "scenes/ConfigLoader.h"
-#include "scenes/Fnv1a.h"
 #include "scenes/PoseRecording.h"
 #include "scenes/SceneBuilder.h"
 

@@ -8,7 +8,6 @@
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -19,6 +18,7 @@
 #include <vector>
 
 #include "core/Errors.h"
+#include "core/Fnv1a.h"
 #include "scenes/PlyBounds.h"
 
 namespace cdb {
@@ -32,11 +32,9 @@ struct PositionKey {
 };
 struct PositionHash {
   std::size_t operator()(const PositionKey& k) const {
-    std::array<std::uint32_t, 3> bits;
-    std::memcpy(bits.data(), k.p.data(), sizeof bits);
-    std::size_t h = 1469598103934665603ull;
-    for (auto b : bits) h = (h ^ b) * 1099511628211ull;
-    return h;
+    Fnv1a h;
+    h.bytes(k.p.data(), sizeof k.p);
+    return static_cast<std::size_t>(h.value());
   }
 };
 

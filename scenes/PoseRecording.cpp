@@ -3,8 +3,8 @@
 #include <string>
 
 #include "core/Errors.h"
+#include "core/Fnv1a.h"
 #include "scenes/DynamicsModel.h"
-#include "scenes/Fnv1a.h"
 #include "scenes/RigidBodySimulation.h"
 
 namespace cdb {

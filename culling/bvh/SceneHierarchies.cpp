@@ -1,25 +1,15 @@
 #include "culling/bvh/SceneHierarchies.h"
 
-#include <cstring>
 #include <map>
 #include <mutex>
 #include <tuple>
 
+#include "core/Fnv1a.h"
 #include "culling/bvh/ObbFitting.h"
 
 namespace cdb {
 
 namespace {
-
-// FNV-1a over raw bytes: a content fingerprint, not a security hash.
-std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t h) {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) {
-    h ^= bytes[i];
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
 
 // The counts ride along with the hash so that a hash collision would also need equal sizes.
 struct TreeKey {
@@ -38,10 +28,11 @@ struct TreeKey {
 };
 
 TreeKey keyOf(const Mesh& mesh, const ObbTreeOptions& options) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  h = fnv1a(mesh.vertices.data(), mesh.vertices.size() * sizeof(mesh.vertices[0]), h);
-  h = fnv1a(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]), h);
-  return {h,
+  // FNV-1a over the raw bytes: a content fingerprint, not a security hash.
+  Fnv1a h;
+  h.bytes(mesh.vertices.data(), mesh.vertices.size() * sizeof(mesh.vertices[0]));
+  h.bytes(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+  return {h.value(),
           mesh.vertices.size(),
           mesh.triangles.size(),
           options.branching,

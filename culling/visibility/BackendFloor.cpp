@@ -6,16 +6,16 @@ namespace cdb {
 
 ReplayFloor::ReplayFloor(std::unique_ptr<VisibilityBackend> backend) : backend_(std::move(backend)) {}
 
-void ReplayFloor::prepare(std::span<const RecordedOp> ops) {
+void ReplayFloor::prepare(std::span<const VisibilityCall> ops) {
   const SceneGeometry* scene = nullptr;
   expected_.clear();
-  for (const RecordedOp& op : ops) {
-    if (op.kind == RecordedOp::Kind::AttachScene) {
+  for (const VisibilityCall& op : ops) {
+    if (op.kind == VisibilityCall::Kind::AttachScene) {
       if (scene != nullptr && scene != op.scene)
         throw InputError("a recording with more than one scene cannot be replayed as one floor");
       scene = op.scene;
     }
-    if (op.kind == RecordedOp::Kind::FetchResults) expected_.push_back(&op.answers);
+    if (op.kind == VisibilityCall::Kind::FetchResults) expected_.push_back(&op.answers);
   }
   if (scene == nullptr) throw InputError("the recording attaches no scene");
   ops_ = ops;

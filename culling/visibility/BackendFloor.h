@@ -19,7 +19,7 @@ class BackendFloor {
   virtual ~BackendFloor() = default;
   // Lowers `ops` once (a recording of one scene, still alive; the ops must outlive the floor's
   // use of them). Throws InputError for a recording that cannot be replayed alone.
-  virtual void prepare(std::span<const RecordedOp> ops) = 0;
+  virtual void prepare(std::span<const VisibilityCall> ops) = 0;
   // Issues the prepared work once and waits for its last answers (one benchmark iteration). The
   // first replay may compile shaders or allocate: time only the ones after it.
   virtual void replayOnce() = 0;
@@ -31,13 +31,13 @@ class BackendFloor {
 class ReplayFloor final : public BackendFloor {
  public:
   explicit ReplayFloor(std::unique_ptr<VisibilityBackend> backend);
-  void prepare(std::span<const RecordedOp> ops) override;
+  void prepare(std::span<const VisibilityCall> ops) override;
   void replayOnce() override;
   [[nodiscard]] bool answersMatch() const override;
 
  private:
   std::unique_ptr<VisibilityBackend> backend_;
-  std::span<const RecordedOp> ops_;
+  std::span<const VisibilityCall> ops_;
   std::vector<const std::vector<std::uint8_t>*> expected_;  // per fetch, into ops_
   std::vector<std::vector<std::uint8_t>> answers_;          // per fetch, refilled by each replay
 };

@@ -33,11 +33,11 @@ struct GlDrawFloor::Program {
 GlDrawFloor::GlDrawFloor(HeadlessGlContext& context, const VisibilityOptions& options)
     : pipeline_(context), options_(options) {}
 
-GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
+GlDrawFloor::Program GlDrawFloor::lower(std::span<const VisibilityCall> ops) {
   Program p;
   const SceneGeometry* scene = nullptr;
-  for (const RecordedOp& op : ops) {
-    if (op.kind != RecordedOp::Kind::AttachScene) continue;
+  for (const VisibilityCall& op : ops) {
+    if (op.kind != VisibilityCall::Kind::AttachScene) continue;
     if (scene != nullptr && scene != op.scene)
       throw InputError("a recording with more than one scene cannot be replayed as one floor");
     scene = op.scene;
@@ -53,7 +53,7 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
     return buffers.slotOf(o);
   };
 
-  using K = RecordedOp::Kind;
+  using K = VisibilityCall::Kind;
   using C = Command::Kind;
   const auto push = [&p](const Command& c) {
     if (c.kind == C::Query) ++p.queries;
@@ -79,7 +79,7 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const RecordedOp> ops) {
     c.first = triangle, c.count = 1;
     push(c);
   };
-  for (const RecordedOp& op : ops) {
+  for (const VisibilityCall& op : ops) {
     Command c;
     switch (op.kind) {
       case K::QueryTriangleRange:
@@ -209,7 +209,7 @@ std::size_t GlDrawFloor::Prepared::queries() const { return program_->queries; }
 std::size_t GlDrawFloor::Prepared::draws() const { return program_->draws; }
 std::size_t GlDrawFloor::Prepared::fetches() const { return program_->expected.size(); }
 
-GlDrawFloor::Prepared GlDrawFloor::prepare(std::span<const RecordedOp> ops) {
+GlDrawFloor::Prepared GlDrawFloor::prepare(std::span<const VisibilityCall> ops) {
   return Prepared(lower(ops));
 }
 
@@ -221,7 +221,7 @@ bool GlDrawFloor::Prepared::answersMatch() const {
   return true;
 }
 
-FloorTiming GlDrawFloor::replay(std::span<const RecordedOp> ops, int repeats) {
+FloorTiming GlDrawFloor::replay(std::span<const VisibilityCall> ops, int repeats) {
   Prepared prepared = prepare(ops);
   FloorTiming timing;
   timing.passes = prepared.passes();

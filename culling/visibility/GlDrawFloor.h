@@ -53,17 +53,17 @@ class GlDrawFloor {
 
   // Lowers `ops`: every look-up, check, pass set-up and box matrix is done here, not in a replay.
   // The recording must hold one scene, still alive; throws InputError otherwise.
-  [[nodiscard]] Prepared prepare(std::span<const RecordedOp> ops);
+  [[nodiscard]] Prepared prepare(std::span<const VisibilityCall> ops);
   // Issues `prepared` once, waiting for its last query results. The first replay on a floor
   // compiles shader variants: time only the replays after it.
   void replayOnce(Prepared& prepared);
 
   // Prepares `ops` and replays them `repeats` times after one untimed warm-up replay.
-  FloorTiming replay(std::span<const RecordedOp> ops, int repeats = 3);
+  FloorTiming replay(std::span<const VisibilityCall> ops, int repeats = 3);
 
  private:
   struct Command;
-  [[nodiscard]] Program lower(std::span<const RecordedOp> ops);
+  [[nodiscard]] Program lower(std::span<const VisibilityCall> ops);
   void run(const Program& program, std::vector<std::vector<std::uint8_t>>& answers);
 
   GlVisibilityPipeline pipeline_;
@@ -77,7 +77,7 @@ class GlQueryFloor final : public BackendFloor {
  public:
   explicit GlQueryFloor(HeadlessGlContext& context, const VisibilityOptions& options = {})
       : floor_(context, options) {}
-  void prepare(std::span<const RecordedOp> ops) override { prepared_.emplace(floor_.prepare(ops)); }
+  void prepare(std::span<const VisibilityCall> ops) override { prepared_.emplace(floor_.prepare(ops)); }
   void replayOnce() override { floor_.replayOnce(*prepared_); }
   [[nodiscard]] bool answersMatch() const override { return prepared_->answersMatch(); }
 

@@ -5,152 +5,138 @@ namespace cdb {
 RecordingBackend::RecordingBackend(VisibilityBackend& inner)
     : inner_(inner), name_("recording:" + std::string(inner.name())) {}
 
-RecordedOp& RecordingBackend::log(RecordedOp::Kind kind) {
-  RecordedOp& op = ops_.emplace_back();
+VisibilityCall& RecordingBackend::log(VisibilityCall::Kind kind) {
+  VisibilityCall& op = ops_.emplace_back();
   op.kind = kind;
   return op;
 }
 
 void RecordingBackend::setOptions(const VisibilityOptions& options) {
   inner_.setOptions(options);
-  log(RecordedOp::Kind::SetOptions).options = options;
+  log(VisibilityCall::Kind::SetOptions).options = options;
 }
 
 void RecordingBackend::attachScene(const SceneGeometry& scene) {
   inner_.attachScene(scene);
-  log(RecordedOp::Kind::AttachScene).scene = &scene;
+  log(VisibilityCall::Kind::AttachScene).scene = &scene;
 }
 
 void RecordingBackend::setPoses(std::span<const Pose> poses) {
   inner_.setPoses(poses);
-  log(RecordedOp::Kind::SetPoses).poses.assign(poses.begin(), poses.end());
+  log(VisibilityCall::Kind::SetPoses).poses.assign(poses.begin(), poses.end());
 }
 
 void RecordingBackend::beginPass(const ViewSpec& view, DepthUse depth) {
   inner_.beginPass(view, depth);
-  RecordedOp& op = log(RecordedOp::Kind::BeginPass);
-  op.view = view;
-  op.depth = depth;
+  log(VisibilityCall::ofPass(view, depth));
 }
 
 QueryIndex RecordingBackend::queryRange(const MeshRange& range) {
   const QueryIndex index = inner_.queryRange(range);
-  log(RecordedOp::Kind::QueryRange).range = range;
+  log(VisibilityCall::ofRange(VisibilityCall::Kind::QueryRange, range));
   return index;
 }
 
 QueryIndex RecordingBackend::queryBox(ObjectId object, const OrientedBox& localBox) {
   const QueryIndex index = inner_.queryBox(object, localBox);
-  RecordedOp& op = log(RecordedOp::Kind::QueryBox);
-  op.object = object;
-  op.box = localBox;
+  log(VisibilityCall::ofBox(VisibilityCall::Kind::QueryBox, object, localBox));
   return index;
 }
 
 QueryIndex RecordingBackend::queryTriangles(const MeshRange& range) {
   const QueryIndex index = inner_.queryTriangles(range);
-  log(RecordedOp::Kind::QueryTriangleRange).range = range;
+  log(VisibilityCall::ofRange(VisibilityCall::Kind::QueryTriangleRange, range));
   return index;
 }
 
 QueryIndex RecordingBackend::queryTriangles(ObjectId object,
                                             std::span<const std::uint32_t> triangles) {
   const QueryIndex index = inner_.queryTriangles(object, triangles);
-  RecordedOp& op = log(RecordedOp::Kind::QueryTriangles);
-  op.object = object;
-  op.triangles.assign(triangles.begin(), triangles.end());
+  log(VisibilityCall::ofTriangles(VisibilityCall::Kind::QueryTriangles, object, triangles));
   return index;
 }
 
 QueryIndex RecordingBackend::queryBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
   const QueryIndex index = inner_.queryBoxes(object, localBoxes);
-  RecordedOp& op = log(RecordedOp::Kind::QueryBoxes);
-  op.object = object;
-  op.boxes.assign(localBoxes.begin(), localBoxes.end());
+  log(VisibilityCall::ofBoxes(VisibilityCall::Kind::QueryBoxes, object, localBoxes));
   return index;
 }
 
 void RecordingBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
   inner_.writeBoxes(object, localBoxes);
-  RecordedOp& op = log(RecordedOp::Kind::WriteBoxes);
-  op.object = object;
-  op.boxes.assign(localBoxes.begin(), localBoxes.end());
+  log(VisibilityCall::ofBoxes(VisibilityCall::Kind::WriteBoxes, object, localBoxes));
 }
 
 void RecordingBackend::writeRange(const MeshRange& range) {
   inner_.writeRange(range);
-  log(RecordedOp::Kind::WriteRange).range = range;
+  log(VisibilityCall::ofRange(VisibilityCall::Kind::WriteRange, range));
 }
 
 void RecordingBackend::writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) {
   inner_.writeTriangles(object, triangles);
-  RecordedOp& op = log(RecordedOp::Kind::WriteTriangles);
-  op.object = object;
-  op.triangles.assign(triangles.begin(), triangles.end());
+  log(VisibilityCall::ofTriangles(VisibilityCall::Kind::WriteTriangles, object, triangles));
 }
 
 void RecordingBackend::writeBox(ObjectId object, const OrientedBox& localBox) {
   inner_.writeBox(object, localBox);
-  RecordedOp& op = log(RecordedOp::Kind::WriteBox);
-  op.object = object;
-  op.box = localBox;
+  log(VisibilityCall::ofBox(VisibilityCall::Kind::WriteBox, object, localBox));
 }
 
 void RecordingBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
   inner_.fetchResults(fullyVisible);
-  log(RecordedOp::Kind::FetchResults).answers = fullyVisible;
+  log(VisibilityCall::Kind::FetchResults).answers = fullyVisible;
 }
 
-void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops,
+void replayOps(VisibilityBackend& target, std::span<const VisibilityCall> ops,
                std::vector<std::vector<std::uint8_t>>* answers) {
   std::vector<std::uint8_t> discarded;
   std::size_t fetches = 0;
   if (answers)
-    for (const RecordedOp& op : ops) fetches += op.kind == RecordedOp::Kind::FetchResults ? 1 : 0;
+    for (const VisibilityCall& op : ops) fetches += op.kind == VisibilityCall::Kind::FetchResults ? 1 : 0;
   if (answers) answers->resize(fetches);
   std::size_t fetch = 0;
-  for (const RecordedOp& op : ops) {
+  for (const VisibilityCall& op : ops) {
     switch (op.kind) {
-      case RecordedOp::Kind::SetOptions:
+      case VisibilityCall::Kind::SetOptions:
         target.setOptions(op.options);
         break;
-      case RecordedOp::Kind::AttachScene:
+      case VisibilityCall::Kind::AttachScene:
         target.attachScene(*op.scene);
         break;
-      case RecordedOp::Kind::SetPoses:
+      case VisibilityCall::Kind::SetPoses:
         target.setPoses(op.poses);
         break;
-      case RecordedOp::Kind::BeginPass:
+      case VisibilityCall::Kind::BeginPass:
         target.beginPass(op.view, op.depth);
         break;
-      case RecordedOp::Kind::QueryRange:
+      case VisibilityCall::Kind::QueryRange:
         target.queryRange(op.range);
         break;
-      case RecordedOp::Kind::QueryBox:
+      case VisibilityCall::Kind::QueryBox:
         target.queryBox(op.object, op.box);
         break;
-      case RecordedOp::Kind::WriteRange:
+      case VisibilityCall::Kind::WriteRange:
         target.writeRange(op.range);
         break;
-      case RecordedOp::Kind::WriteTriangles:
+      case VisibilityCall::Kind::WriteTriangles:
         target.writeTriangles(op.object, op.triangles);
         break;
-      case RecordedOp::Kind::WriteBox:
+      case VisibilityCall::Kind::WriteBox:
         target.writeBox(op.object, op.box);
         break;
-      case RecordedOp::Kind::FetchResults:
+      case VisibilityCall::Kind::FetchResults:
         target.fetchResults(answers ? (*answers)[fetch++] : discarded);
         break;
-      case RecordedOp::Kind::QueryTriangleRange:
+      case VisibilityCall::Kind::QueryTriangleRange:
         target.queryTriangles(op.range);
         break;
-      case RecordedOp::Kind::QueryTriangles:
+      case VisibilityCall::Kind::QueryTriangles:
         target.queryTriangles(op.object, op.triangles);
         break;
-      case RecordedOp::Kind::QueryBoxes:
+      case VisibilityCall::Kind::QueryBoxes:
         target.queryBoxes(op.object, op.boxes);
         break;
-      case RecordedOp::Kind::WriteBoxes:
+      case VisibilityCall::Kind::WriteBoxes:
         target.writeBoxes(op.object, op.boxes);
         break;
     }

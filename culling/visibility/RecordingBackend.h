@@ -5,39 +5,9 @@
 #include <vector>
 
 #include "culling/visibility/VisibilityBackend.h"
+#include "culling/visibility/VisibilityCall.h"
 
 namespace cdb {
-
-struct RecordedOp {
-  enum class Kind {
-    SetOptions,
-    AttachScene,
-    SetPoses,
-    BeginPass,
-    QueryRange,
-    QueryBox,
-    WriteRange,
-    WriteTriangles,
-    WriteBox,
-    FetchResults,
-    QueryTriangleRange,  // each triangle of `range`
-    QueryTriangles,      // each of `triangles` of `object`
-    QueryBoxes,          // each of `boxes` of `object`
-    WriteBoxes
-  };
-  Kind kind = Kind::BeginPass;
-  VisibilityOptions options;             // SetOptions
-  const SceneGeometry* scene = nullptr;  // AttachScene (not owned)
-  std::vector<Pose> poses;               // SetPoses
-  ViewSpec view;                         // BeginPass
-  DepthUse depth = DepthUse::Fresh;      // BeginPass
-  MeshRange range;                       // QueryRange, WriteRange, QueryTriangleRange
-  ObjectId object = 0;                   // QueryBox, WriteTriangles, WriteBox, the batches
-  OrientedBox box;                       // QueryBox, WriteBox
-  std::vector<std::uint32_t> triangles;  // WriteTriangles, QueryTriangles
-  std::vector<OrientedBox> boxes;        // QueryBoxes, WriteBoxes
-  std::vector<std::uint8_t> answers;     // FetchResults: what the recorded backend answered
-};
 
 class RecordingBackend final : public VisibilityBackend {
  public:
@@ -64,21 +34,22 @@ class RecordingBackend final : public VisibilityBackend {
   [[nodiscard]] VisibilityCounters counters() const override { return inner_.counters(); }
   void resetCounters() override { inner_.resetCounters(); }
 
-  [[nodiscard]] const std::vector<RecordedOp>& ops() const { return ops_; }
+  [[nodiscard]] const std::vector<VisibilityCall>& ops() const { return ops_; }
   void clear() { ops_.clear(); }
 
  private:
-  RecordedOp& log(RecordedOp::Kind kind);
+  VisibilityCall& log(VisibilityCall::Kind kind);
+  void log(VisibilityCall op) { ops_.push_back(std::move(op)); }
 
   VisibilityBackend& inner_;
   std::string name_;
-  std::vector<RecordedOp> ops_;
+  std::vector<VisibilityCall> ops_;
 };
 
 // Issues `ops` again on `target` through the interface. When `answers` is given, each fetch's
 // answers go into the next of its entries (resized to the number of fetches), else they are
 // discarded.
-void replayOps(VisibilityBackend& target, std::span<const RecordedOp> ops,
+void replayOps(VisibilityBackend& target, std::span<const VisibilityCall> ops,
                std::vector<std::vector<std::uint8_t>>* answers = nullptr);
 
 }  // namespace cdb

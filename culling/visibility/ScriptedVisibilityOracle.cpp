@@ -4,12 +4,9 @@ namespace cdb {
 
 void ScriptedVisibilityOracle::beginPass(const ViewSpec& view, DepthUse depth) {
   ++pass_;
-  OracleCall call;
-  call.kind = OracleCall::Kind::BeginPass;
+  VisibilityCall call = VisibilityCall::ofPass(view, depth);
   call.pass = pass_;
-  call.view = view;
-  call.depth = depth;
-  log_.push_back(call);
+  log_.push_back(std::move(call));
   if (depth != DepthUse::SharedSecond) {
     passWrites_.clear();
     ++counters_.depthClears;
@@ -19,7 +16,7 @@ void ScriptedVisibilityOracle::beginPass(const ViewSpec& view, DepthUse depth) {
   ++counters_.passes;
 }
 
-QueryIndex ScriptedVisibilityOracle::query(OracleCall call) {
+QueryIndex ScriptedVisibilityOracle::query(VisibilityCall call) {
   call.pass = pass_;
   const bool visible = script_(call, passWrites_);
   log_.push_back(std::move(call));
@@ -29,7 +26,7 @@ QueryIndex ScriptedVisibilityOracle::query(OracleCall call) {
   return static_cast<QueryIndex>(pending_.size() - 1);
 }
 
-void ScriptedVisibilityOracle::write(OracleCall call) {
+void ScriptedVisibilityOracle::write(VisibilityCall call) {
   call.pass = pass_;
   log_.push_back(call);
   passWrites_.push_back(std::move(call));
@@ -37,49 +34,29 @@ void ScriptedVisibilityOracle::write(OracleCall call) {
 }
 
 QueryIndex ScriptedVisibilityOracle::queryRange(const MeshRange& range) {
-  OracleCall call;
-  call.kind = OracleCall::Kind::QueryRange;
-  call.object = range.object;
-  call.range = range;
   counters_.trianglesDrawn += range.triangleCount;
-  return query(std::move(call));
+  return query(VisibilityCall::ofRange(VisibilityCall::Kind::QueryRange, range));
 }
 
 QueryIndex ScriptedVisibilityOracle::queryBox(ObjectId object, const OrientedBox& localBox) {
-  OracleCall call;
-  call.kind = OracleCall::Kind::QueryBox;
-  call.object = object;
-  call.box = localBox;
   counters_.trianglesDrawn += 12;
-  return query(std::move(call));
+  return query(VisibilityCall::ofBox(VisibilityCall::Kind::QueryBox, object, localBox));
 }
 
 void ScriptedVisibilityOracle::writeRange(const MeshRange& range) {
-  OracleCall call;
-  call.kind = OracleCall::Kind::WriteRange;
-  call.object = range.object;
-  call.range = range;
   counters_.trianglesDrawn += range.triangleCount;
-  write(std::move(call));
+  write(VisibilityCall::ofRange(VisibilityCall::Kind::WriteRange, range));
 }
 
 void ScriptedVisibilityOracle::writeTriangles(ObjectId object,
                                               std::span<const std::uint32_t> triangles) {
-  OracleCall call;
-  call.kind = OracleCall::Kind::WriteTriangles;
-  call.object = object;
-  call.triangles.assign(triangles.begin(), triangles.end());
   counters_.trianglesDrawn += triangles.size();
-  write(std::move(call));
+  write(VisibilityCall::ofTriangles(VisibilityCall::Kind::WriteTriangles, object, triangles));
 }
 
 void ScriptedVisibilityOracle::writeBox(ObjectId object, const OrientedBox& localBox) {
-  OracleCall call;
-  call.kind = OracleCall::Kind::WriteBox;
-  call.object = object;
-  call.box = localBox;
   counters_.trianglesDrawn += 12;
-  write(std::move(call));
+  write(VisibilityCall::ofBox(VisibilityCall::Kind::WriteBox, object, localBox));
 }
 
 void ScriptedVisibilityOracle::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
@@ -91,7 +68,7 @@ void ScriptedVisibilityOracle::fetchResults(std::vector<std::uint8_t>& fullyVisi
 std::vector<ObjectId> ScriptedVisibilityOracle::queriedObjects(int pass) const {
   std::vector<ObjectId> out;
   for (const auto& c : log_) {
-    if (c.pass == pass && (c.kind == OracleCall::Kind::QueryRange || c.kind == OracleCall::Kind::QueryBox))
+    if (c.pass == pass && (c.kind == VisibilityCall::Kind::QueryRange || c.kind == VisibilityCall::Kind::QueryBox))
       out.push_back(c.object);
   }
   return out;

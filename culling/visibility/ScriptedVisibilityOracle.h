@@ -6,26 +6,15 @@
 #include <vector>
 
 #include "culling/visibility/VisibilityBackend.h"
+#include "culling/visibility/VisibilityCall.h"
 
 namespace cdb {
-
-struct OracleCall {
-  enum class Kind { BeginPass, QueryRange, QueryBox, WriteRange, WriteTriangles, WriteBox };
-  Kind kind = Kind::BeginPass;
-  int pass = -1;  // index of the pass it belongs to (0, 1, ...)
-  ObjectId object = 0;
-  MeshRange range;        // QueryRange / WriteRange
-  OrientedBox box;        // QueryBox / WriteBox
-  std::vector<std::uint32_t> triangles;  // WriteTriangles
-  ViewSpec view;          // BeginPass
-  DepthUse depth = DepthUse::Fresh;  // BeginPass
-};
 
 class ScriptedVisibilityOracle final : public VisibilityBackend {
  public:
   // Returns true when the queried piece is fully visible. `writtenSoFar` is every write of the
   // current pass before the query, so a geometric script can decide from it.
-  using Script = std::function<bool(const OracleCall& query, std::span<const OracleCall> writtenSoFar)>;
+  using Script = std::function<bool(const VisibilityCall& query, std::span<const VisibilityCall> writtenSoFar)>;
 
   explicit ScriptedVisibilityOracle(Script script) : script_(std::move(script)) {}
 
@@ -43,22 +32,22 @@ class ScriptedVisibilityOracle final : public VisibilityBackend {
   [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
   void resetCounters() override { counters_ = {}; }
 
-  [[nodiscard]] const std::vector<OracleCall>& log() const { return log_; }
+  [[nodiscard]] const std::vector<VisibilityCall>& log() const { return log_; }
   // Objects queried in pass `pass`, in order.
   [[nodiscard]] std::vector<ObjectId> queriedObjects(int pass) const;
   [[nodiscard]] std::span<const Pose> poses() const { return poses_; }
   [[nodiscard]] const VisibilityOptions& options() const { return options_; }
 
  private:
-  QueryIndex query(OracleCall call);
-  void write(OracleCall call);
+  QueryIndex query(VisibilityCall call);
+  void write(VisibilityCall call);
 
   Script script_;
   VisibilityOptions options_;
   const SceneGeometry* scene_ = nullptr;
   std::span<const Pose> poses_;
-  std::vector<OracleCall> log_;
-  std::vector<OracleCall> passWrites_;
+  std::vector<VisibilityCall> log_;
+  std::vector<VisibilityCall> passWrites_;
   std::vector<std::uint8_t> pending_;
   int pass_ = -1;
   VisibilityCounters counters_;

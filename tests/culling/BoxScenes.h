@@ -2,6 +2,7 @@
 // Scenes of axis-aligned boxes for the strategy tests: each object is its own 12-triangle box
 // mesh centred at its origin, placed by a translation, so a test states world boxes directly
 // and the projected intervals [Min, Max] on each axis are exactly the boxes' sides.
+#include <random>
 #include <vector>
 
 #include "core/Aabb.h"
@@ -40,6 +41,19 @@ inline BoxScene boxScene(const std::vector<Aabb>& boxes) {
     s.poses.push_back(p);
   }
   return s;
+}
+
+// `count` boxes with centres uniform in [0, span)^3 and half sides uniform in [0.2, 0.8), drawn
+// from `rng` (centre, then half sides, box after box): dense enough that many touch.
+inline std::vector<Aabb> randomBoxes(std::mt19937_64& rng, int count, double span) {
+  std::uniform_real_distribution<double> centre(0.0, span), half(0.2, 0.8);
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d c(centre(rng), centre(rng), centre(rng));
+    const Eigen::Vector3d h(half(rng), half(rng), half(rng));
+    boxes.emplace_back(c - h, c + h);
+  }
+  return boxes;
 }
 
 inline Aabb box(double x0, double x1, double y0, double y1, double z0, double z1) {

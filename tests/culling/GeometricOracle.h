@@ -1,17 +1,14 @@
 #pragma once
 // A scripted oracle that decides "fully visible" from the geometry instead of a script of answers:
-// each queried or written piece stands for the world AABB of its triangles, and the queried piece
-// is fully visible iff, for every piece written earlier in the pass whose box overlaps it in the
-// image plane, it lies entirely in front (strictly nearer along the view). Views must be along an
-// axis. Exact for boxes, and conservative for any content of the boxes: pieces that touch are
-// never fully visible with respect to each other.
+// each queried or written piece stands for the world AABB of its triangles, decided as
+// AxisViewOcclusion.h says. Exact for boxes, and conservative for any content of the boxes: pieces
+// that touch are never fully visible with respect to each other.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <span>
 #include <vector>
 
-#include "culling/SortedIntervals.h"
+#include "AxisViewOcclusion.h"
 #include "culling/visibility/ScriptedVisibilityOracle.h"
 
 namespace cdb::testing {
@@ -26,7 +23,7 @@ class GeometricOracle {
   };
 
   explicit GeometricOracle(const SceneGeometry& scene)
-      : scene_(scene), oracle_([this](const OracleCall& q, std::span<const OracleCall> written) {
+      : scene_(scene), oracle_([this](const VisibilityCall& q, std::span<const VisibilityCall> written) {
           return decide(q, written);
         }) {}
   GeometricOracle(const GeometricOracle&) = delete;
@@ -54,12 +51,12 @@ class GeometricOracle {
   }
 
  private:
-  Aabb boxOf(const OracleCall& c) const {
+  Aabb boxOf(const VisibilityCall& c) const {
     std::vector<std::uint32_t> tris;
-    if (c.kind == OracleCall::Kind::WriteTriangles) {
+    if (c.kind == VisibilityCall::Kind::WriteTriangles) {
       tris = c.triangles;
     } else {
-      EXPECT_TRUE(c.kind == OracleCall::Kind::QueryRange || c.kind == OracleCall::Kind::WriteRange)
+      EXPECT_TRUE(c.kind == VisibilityCall::Kind::QueryRange || c.kind == VisibilityCall::Kind::WriteRange)
           << "the geometric oracle decides mesh pieces only";
       for (std::uint32_t t = 0; t < c.range.triangleCount; ++t)
         tris.push_back(c.range.firstTriangle + t);
@@ -67,32 +64,9 @@ class GeometricOracle {
     return pieceBox(c.object, tris);
   }
 
-  Eigen::Vector3d currentDirection() const {
-    const auto& log = oracle_.log();
-    for (auto it = log.rbegin(); it != log.rend(); ++it)
-      if (it->kind == OracleCall::Kind::BeginPass) return it->view.direction;
-    ADD_FAILURE() << "query outside a pass";
-    return Eigen::Vector3d::UnitZ();
-  }
-
-  bool decide(const OracleCall& q, std::span<const OracleCall> written) {
-    const Eigen::Vector3d d = currentDirection();
-    int axis = 0;
-    d.cwiseAbs().maxCoeff(&axis);
-    EXPECT_DOUBLE_EQ(std::abs(d[axis]), 1.0) << "views must be along an axis";
-    const Aabb qb = boxOf(q);
-    const double qFar = projectAabb(qb, d).second;
-    bool visible = true;
-    for (const auto& w : written) {
-      const Aabb wb = boxOf(w);
-      bool imageOverlap = true;
-      for (int k = 0; k < 3; ++k)
-        if (k != axis && (qb.min()[k] > wb.max()[k] || wb.min()[k] > qb.max()[k])) imageOverlap = false;
-      if (imageOverlap && !(qFar < projectAabb(wb, d).first)) {
-        visible = false;
-        break;
-      }
-    }
+  bool decide(const VisibilityCall& q, std::span<const VisibilityCall> written) {
+    const bool visible = fullyVisibleAlongAxis(oracle_, boxOf(q), written,
+                                               [this](const VisibilityCall& w) { return boxOf(w); });
     const bool whole = q.range.firstTriangle == 0 &&
                        q.range.triangleCount == scene_.meshOf(q.object).triangleCount();
     answers_.push_back({q.pass, q.object, whole, visible});

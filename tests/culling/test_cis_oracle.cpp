@@ -67,7 +67,7 @@ TEST(CisOracle, Figure37IsLaidOutInTheThesisOrder) {
 TEST(CisOracle, WorkedExampleOfFigures37To316) {
   auto s = figure37();
   // Pass 1: O8, O4, O6, O7 not fully visible. Pass 2: O2, O3, O5 not fully visible, O1 visible.
-  ScriptedVisibilityOracle oracle([](const OracleCall& q, auto) {
+  ScriptedVisibilityOracle oracle([](const VisibilityCall& q, auto) {
     const std::set<ObjectId> hidden1 = {O(8), O(4), O(6), O(7)};
     const std::set<ObjectId> hidden2 = {O(2), O(3), O(5)};
     return !(q.pass == 0 ? hidden1 : hidden2).count(q.object);
@@ -95,11 +95,11 @@ TEST(CisOracle, WorkedExampleOfFigures37To316) {
 
   // Two passes, one depth clear, one fetch each; pass 2 looks from the other side and draws
   // every object near to far.
-  std::vector<const OracleCall*> starts;
+  std::vector<const VisibilityCall*> starts;
   std::vector<ObjectId> written2;
   for (const auto& c : oracle.log()) {
-    if (c.kind == OracleCall::Kind::BeginPass) starts.push_back(&c);
-    if (c.kind == OracleCall::Kind::WriteRange && c.pass == 1) written2.push_back(c.object);
+    if (c.kind == VisibilityCall::Kind::BeginPass) starts.push_back(&c);
+    if (c.kind == VisibilityCall::Kind::WriteRange && c.pass == 1) written2.push_back(c.object);
   }
   ASSERT_EQ(starts.size(), 2u);
   EXPECT_EQ(starts[0]->view.direction, Eigen::Vector3d::UnitZ());
@@ -115,7 +115,7 @@ TEST(CisOracle, WorkedExampleOfFigures37To316) {
 
 TEST(CisOracle, FullyVisibleInPassOneEverywhereLeavesNothingToTestInPassTwo) {
   auto s = figure37();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return true; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
   CollisionIndependentSets cis(StrategyOptions{}, CisOptions{2});
   cis.attach(s.scene, oracle);
   const auto result = cis.cull({s.poses, 0});
@@ -129,7 +129,7 @@ TEST(CisOracle, SetsEndAtGapsAlongTheAxisAndSingletonsAreDropped) {
   // Along z: {0, 1} overlap, {2, 3} overlap, 4 alone; nothing is ever fully visible.
   auto s = testing::boxScene({box(0, 1, 0, 1, 0, 2), box(0, 1, 0, 1, 1, 3), box(0, 1, 0, 1, 5, 7),
                               box(0, 1, 0, 1, 6, 8), box(0, 1, 0, 1, 10, 11)});
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return false; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
   CollisionIndependentSets cis(StrategyOptions{}, CisOptions{2});
   cis.attach(s.scene, oracle);
   const auto result = cis.cull({s.poses, 0});
@@ -143,7 +143,7 @@ TEST(CisOracle, ViewAxisIsWhereTheCentresSpreadMostUnlessFixed) {
   for (int i = 0; i < 5; ++i) boxes.push_back(box(0.25 * i, 1 + 0.25 * i, 3 * i, 3 * i + 1, 0, 1));
   auto s = testing::boxScene(boxes);
   for (const std::optional<int> fixed : {std::optional<int>{}, std::optional<int>{0}}) {
-    ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return true; });
+    ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
     CollisionIndependentSets cis(StrategyOptions{}, CisOptions{fixed});
     cis.attach(s.scene, oracle);
     (void)cis.cull({s.poses, 0});
@@ -161,13 +161,8 @@ TEST(CisOracle, NeverSplitsOrDropsATouchingPairOnRandomBoxes) {
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> centre(0.0, 5.0), half(0.2, 0.8);
-    std::vector<Aabb> boxes;
-    for (int i = 0; i < 24; ++i) {
-      const Eigen::Vector3d c(centre(rng), centre(rng), centre(rng));
-      const Eigen::Vector3d h(half(rng), half(rng), half(rng));
-      boxes.emplace_back(c - h, c + h);
-    }
+    const std::vector<Aabb> boxes = testing::randomBoxes(rng, 24, 5.0);
+    std::uniform_real_distribution<double> half(0.2, 0.8);  // the second frame's moves
     auto s = testing::boxScene(boxes);
     testing::GeometricOracle g(s.scene);
     CollisionIndependentSets cis(StrategyOptions{});

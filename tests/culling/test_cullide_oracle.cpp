@@ -24,7 +24,7 @@ std::vector<Pose> spreadPoses() {
 TEST(CullideOracle, EverythingFullyVisibleEmptiesThePcsAfterTheFirstAxis) {
   const auto scene = threeTori();
   const auto poses = spreadPoses();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return true; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
   Cullide cullide(StrategyOptions{});
   cullide.attach(scene, oracle);
   const auto result = cullide.cull({poses, 0});
@@ -41,7 +41,7 @@ TEST(CullideOracle, EverythingFullyVisibleEmptiesThePcsAfterTheFirstAxis) {
 TEST(CullideOracle, NothingVisibleKeepsEveryObjectAndTriangleThroughAllAxesAndLevels) {
   const auto scene = threeTori();
   const auto poses = spreadPoses();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return false; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
   Cullide cullide(StrategyOptions{});
   cullide.attach(scene, oracle);
   const auto result = cullide.cull({poses, 0});
@@ -54,7 +54,7 @@ TEST(CullideOracle, NothingVisibleKeepsEveryObjectAndTriangleThroughAllAxesAndLe
   // Views along x, y, z in that order.
   std::vector<Eigen::Vector3d> directions;
   for (const auto& c : oracle.log())
-    if (c.kind == OracleCall::Kind::BeginPass) directions.push_back(c.view.direction);
+    if (c.kind == VisibilityCall::Kind::BeginPass) directions.push_back(c.view.direction);
   ASSERT_EQ(directions.size(), 12u);
   EXPECT_EQ(directions[0], Eigen::Vector3d::UnitX());
   EXPECT_EQ(directions[2], Eigen::Vector3d::UnitY());
@@ -65,8 +65,8 @@ TEST(CullideOracle, AnObjectIsPrunedOnlyWhenFullyVisibleInBothPasses) {
   const auto scene = threeTori();
   const auto poses = spreadPoses();
   // Object 0 hidden in pass 1 only, object 1 visible in both, object 2 hidden in pass 2 only.
-  ScriptedVisibilityOracle oracle([](const OracleCall& q, auto) {
-    if (q.kind != OracleCall::Kind::QueryRange || q.range.triangleCount == 1) return false;
+  ScriptedVisibilityOracle oracle([](const VisibilityCall& q, auto) {
+    if (q.kind != VisibilityCall::Kind::QueryRange || q.range.triangleCount == 1) return false;
     const int passInAxis = q.pass % 2;
     if (q.object == 0) return passInAxis == 1;
     if (q.object == 2) return passInAxis == 0;
@@ -85,7 +85,7 @@ TEST(CullideOracle, TrianglesVisibleInBothPassesLeaveTheSet) {
   const auto scene = threeTori();
   const auto poses = spreadPoses();
   // Objects never pruned; at triangle level only even triangles of object 1 stay hidden.
-  ScriptedVisibilityOracle oracle([](const OracleCall& q, auto) {
+  ScriptedVisibilityOracle oracle([](const VisibilityCall& q, auto) {
     if (q.range.triangleCount != 1) return false;
     return !(q.object == 1 && q.range.firstTriangle % 2 == 0);
   });

@@ -72,8 +72,8 @@ struct QueryCall {
   std::size_t offset = 0;  // of the answer in the call's answers
 };
 
-std::size_t answersOf(const RecordedOp& op) {
-  using K = RecordedOp::Kind;
+std::size_t answersOf(const VisibilityCall& op) {
+  using K = VisibilityCall::Kind;
   switch (op.kind) {
     case K::QueryRange:
     case K::QueryBox: return 1;
@@ -84,10 +84,10 @@ std::size_t answersOf(const RecordedOp& op) {
   }
 }
 
-QueryCall locate(std::span<const RecordedOp> ops, std::size_t fetch, std::size_t query) {
+QueryCall locate(std::span<const VisibilityCall> ops, std::size_t fetch, std::size_t query) {
   std::size_t round = 0, issued = 0;
   for (std::size_t i = 0; i < ops.size(); ++i) {
-    if (ops[i].kind == RecordedOp::Kind::FetchResults) {
+    if (ops[i].kind == VisibilityCall::Kind::FetchResults) {
       ++round;
       issued = 0;
       continue;
@@ -103,13 +103,13 @@ QueryCall locate(std::span<const RecordedOp> ops, std::size_t fetch, std::size_t
 // gl-queries' answer to one query asked again: the recorded work before its call replayed, the
 // driver's binned work finished, then the call alone.
 std::uint8_t askedAgain(HeadlessGlContext& context, const VisibilityOptions& options,
-                        std::span<const RecordedOp> ops, const QueryCall& call) {
+                        std::span<const VisibilityCall> ops, const QueryCall& call) {
   GlOcclusionQueryBackend queries(context, options);
   replayOps(queries, ops.subspan(0, call.op));
   glFinish();
-  RecordedOp fetch;
-  fetch.kind = RecordedOp::Kind::FetchResults;
-  const RecordedOp alone[] = {ops[call.op], fetch};
+  VisibilityCall fetch;
+  fetch.kind = VisibilityCall::Kind::FetchResults;
+  const VisibilityCall alone[] = {ops[call.op], fetch};
   std::vector<std::vector<std::uint8_t>> answers;
   replayOps(queries, alone, &answers);
   return answers.at(0).at(call.offset);
@@ -139,7 +139,7 @@ TEST_P(FlagBackendEquivalence, SameAnswerToEveryQuery) {
   strategy->attach(recorded->scene, recorder);
   (void)strategy->cull({poses, f.frame});
   std::size_t recordedAnswers = 0;
-  for (const RecordedOp& op : recorder.ops()) recordedAnswers += op.answers.size();
+  for (const VisibilityCall& op : recorder.ops()) recordedAnswers += op.answers.size();
   if (recordedAnswers == 0) GTEST_SKIP() << strategyName << " asks the backend nothing";
 
   GlFlagBackend flags(shared.context, options);
@@ -148,8 +148,8 @@ TEST_P(FlagBackendEquivalence, SameAnswerToEveryQuery) {
 
   std::size_t compared = 0, occluded = 0, askedAgainCount = 0;
   std::size_t fetch = 0;
-  for (const RecordedOp& op : recorder.ops()) {
-    if (op.kind != RecordedOp::Kind::FetchResults) continue;
+  for (const VisibilityCall& op : recorder.ops()) {
+    if (op.kind != VisibilityCall::Kind::FetchResults) continue;
     ASSERT_LT(fetch, fetched.size());
     const auto& got = fetched[fetch];
     ASSERT_EQ(got.size(), op.answers.size()) << "fetch " << fetch;

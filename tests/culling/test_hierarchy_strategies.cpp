@@ -20,7 +20,7 @@
 namespace cdb {
 namespace {
 
-using Kind = OracleCall::Kind;
+using Kind = VisibilityCall::Kind;
 
 StrategyOptions withLeaves(int leafTriangles) {
   StrategyOptions o;
@@ -89,8 +89,8 @@ std::vector<std::vector<std::uint32_t>> unprunedLevels(const ObbTree& tree) {
 }
 
 // The calls of each pass, grouped per pass.
-std::vector<std::vector<const OracleCall*>> callsPerPass(const ScriptedVisibilityOracle& oracle) {
-  std::vector<std::vector<const OracleCall*>> passes;
+std::vector<std::vector<const VisibilityCall*>> callsPerPass(const ScriptedVisibilityOracle& oracle) {
+  std::vector<std::vector<const VisibilityCall*>> passes;
   for (const auto& c : oracle.log()) {
     if (c.kind == Kind::BeginPass) passes.emplace_back();
     if (!passes.empty()) passes.back().push_back(&c);
@@ -105,7 +105,7 @@ void expectObjectsDrawnAsGroups(const ScriptedVisibilityOracle& oracle) {
     ObjectId current = 0;
     bool any = false;
     bool writing = false;
-    for (const OracleCall* c : pass) {
+    for (const VisibilityCall* c : pass) {
       if (c->kind == Kind::BeginPass) continue;
       if (!any || c->object != current) {
         EXPECT_FALSE(finished.count(c->object)) << "object " << c->object << " drawn twice";
@@ -124,7 +124,7 @@ void expectObjectsDrawnAsGroups(const ScriptedVisibilityOracle& oracle) {
 
 TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) {
   auto s = threeToriWithPoses();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return false; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
   CullideWithHierarchy strategy(withLeaves(2));
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
@@ -148,14 +148,14 @@ TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) 
       EXPECT_EQ(pass[0]->depth, DepthUse::Fresh);
       // Pass 1 in order O1..On, pass 2 in reverse; each object its level's nodes.
       std::vector<ObjectId> order;
-      for (const OracleCall* c : pass) {
+      for (const VisibilityCall* c : pass) {
         if (c->kind != Kind::QueryBox) continue;
         if (order.empty() || order.back() != c->object) order.push_back(c->object);
       }
       EXPECT_EQ(order,
                 (p % 2 == 0 ? std::vector<ObjectId>{0, 1, 2} : std::vector<ObjectId>{2, 1, 0}));
       std::multiset<std::uint32_t> queried;
-      for (const OracleCall* c : pass)
+      for (const VisibilityCall* c : pass)
         if (c->kind == Kind::QueryBox && c->object == 1) queried.insert(nodeOf(*hierarchy, c->box));
       EXPECT_EQ(queried, std::multiset<std::uint32_t>(levels[level].begin(), levels[level].end()));
     }
@@ -179,7 +179,7 @@ TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
   const std::uint32_t kept = tree.nodes()[0].firstChild + 1;  // one child of the root
   ASSERT_FALSE(tree.nodes()[kept].leaf());
   // Object 0: every node outside `kept`'s subtree is fully visible below the root.
-  ScriptedVisibilityOracle oracle([&](const OracleCall& q, auto) {
+  ScriptedVisibilityOracle oracle([&](const VisibilityCall& q, auto) {
     if (q.object != 0) return false;
     const std::uint32_t n = nodeOf(*hierarchy, q.box);
     return n != 0 && !inSubtree(tree, n, kept);
@@ -209,7 +209,7 @@ TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
 
 TEST(CullideBvhOracle, EverythingFullyVisibleEndsAfterTheFirstAxis) {
   auto s = threeToriWithPoses();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return true; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
   CullideWithHierarchy strategy(withLeaves(2));
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
@@ -224,7 +224,7 @@ TEST(CullideBvhOracle, EverythingFullyVisibleEndsAfterTheFirstAxis) {
 TEST(CullideBvhOracle, AnObjectLeftAloneCollidesWithNothing) {
   auto s = threeToriWithPoses();
   // Object 1 is hidden in every pass, the others fully visible: it is left alone.
-  ScriptedVisibilityOracle oracle([](const OracleCall& q, auto) { return q.object != 1; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall& q, auto) { return q.object != 1; });
   CullideWithHierarchy strategy(withLeaves(2));
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
@@ -236,7 +236,7 @@ TEST(CullideBvhOracle, AnObjectLeftAloneCollidesWithNothing) {
 
 TEST(OursOracle, EachLevelLooksAlongTheNextAxisWithOnePassPairPerSet) {
   auto s = threeToriWithPoses();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return false; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
   HierarchicalCollisionIndependentSets strategy(withLeaves(2), HierarchicalCisOptions{1});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
@@ -263,7 +263,7 @@ TEST(OursOracle, EachLevelLooksAlongTheNextAxisWithOnePassPairPerSet) {
 
 TEST(OursOracle, FirstObjectOfAPassIsNotQueriedAndTheLastNotWritten) {
   auto s = threeToriWithPoses();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return false; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
   HierarchicalCollisionIndependentSets strategy(withLeaves(2), HierarchicalCisOptions{0});
   strategy.attach(s.scene, oracle);
   (void)strategy.cull({s.poses, 0});
@@ -273,7 +273,7 @@ TEST(OursOracle, FirstObjectOfAPassIsNotQueriedAndTheLastNotWritten) {
     // Objects in drawing order, and whether each was queried / written.
     std::vector<ObjectId> order;
     std::map<ObjectId, std::pair<int, int>> calls;
-    for (const OracleCall* c : pass) {
+    for (const VisibilityCall* c : pass) {
       if (c->kind == Kind::BeginPass) continue;
       if (order.empty() || order.back() != c->object) order.push_back(c->object);
       (c->kind == Kind::QueryBox ? calls[c->object].first : calls[c->object].second) += 1;
@@ -328,7 +328,7 @@ TEST(OursOracle, ASetSplitsAtLevelOneAndEachSubsetHasItsOwnPasses) {
   EXPECT_EQ(result.counters.sets, 2u);
 
   // Level 2 (along z): two pass pairs, one per set, each fitted to its set alone.
-  std::vector<const OracleCall*> level2;
+  std::vector<const VisibilityCall*> level2;
   for (const auto& c : g.backend().log())
     if (c.kind == Kind::BeginPass && std::abs(c.view.direction.z()) == 1.0) level2.push_back(&c);
   ASSERT_EQ(level2.size(), 4u);

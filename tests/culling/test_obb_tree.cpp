@@ -9,13 +9,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <filesystem>
 #include <numbers>
 #include <numeric>
-#include <optional>
 #include <random>
 #include <span>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,9 +21,8 @@
 #include "culling/bvh/MinAreaRectangle.h"
 #include "culling/bvh/ObbFitting.h"
 #include "culling/bvh/ObbTree.h"
-#include "scenes/AssetPath.h"
-#include "scenes/MeshLoader.h"
 #include "scenes/ProceduralMeshes.h"
+#include "tests/culling/RandomScenes.h"
 
 namespace cdb {
 namespace {
@@ -70,28 +66,6 @@ Mesh cuboid(const Eigen::Vector3d& half, const Pose& pose) {
     mesh.triangles.push_back({q[0], q[1], q[2]});
     mesh.triangles.push_back({q[0], q[2], q[3]});
   }
-  return mesh;
-}
-
-std::optional<std::filesystem::path> findDragon() {
-  const std::string file = "dragon_vrip_res3.obj";
-  if (const char* env = std::getenv(kAssetsEnvVar)) {
-    std::stringstream dirs(env);
-    std::string dir;
-    while (std::getline(dirs, dir, ':'))
-      if (!dir.empty() && std::filesystem::exists(std::filesystem::path(dir) / file))
-        return std::filesystem::path(dir) / file;
-  }
-  const std::filesystem::path shared = CDBENCH_SOURCE_DIR "/../shared/meshes/" + file;
-  if (std::filesystem::exists(shared)) return shared;
-  return std::nullopt;
-}
-
-std::optional<Mesh> loadDragon() {
-  const auto path = findDragon();
-  if (!path) return std::nullopt;
-  Mesh mesh = loadMesh(*path).mesh;
-  normaliseMesh(mesh, 1.0);
   return mesh;
 }
 
@@ -554,7 +528,7 @@ TEST(ObbTree, OptimizedBoxesAreNoLargerOnTheTorus) {
 }
 
 TEST(ObbTree, Dragon) {
-  const auto dragon = loadDragon();
+  const auto dragon = testing::loadUnitDragon();
   if (!dragon) GTEST_SKIP() << "dragon_vrip_res3.obj not found (CDBENCH_ASSETS or shared/meshes)";
   ASSERT_EQ(dragon->triangles.size(), 47794u);
   ObbTreeOptions options;

@@ -26,7 +26,7 @@ std::vector<std::string> registeredPeers() {
 // Pairs a peer decides on each frame of `scene`.
 std::vector<std::vector<ObjectPair>> peerPairs(const std::string& peer,
                                                const testing::RandomScene& scene) {
-  ScriptedVisibilityOracle unused([](const OracleCall&, std::span<const OracleCall>) {
+  ScriptedVisibilityOracle unused([](const VisibilityCall&, std::span<const VisibilityCall>) {
     ADD_FAILURE() << "a peer queried the visibility backend";
     return true;
   });

@@ -37,8 +37,8 @@ std::vector<Pose> stackedPoses() {
   return poses;
 }
 
-bool objectQuery(const OracleCall& q) { return q.range.triangleCount == kTorusTriangles; }
-bool firstPass(const OracleCall& q) { return q.pass % 2 == 0; }
+bool objectQuery(const VisibilityCall& q) { return q.range.triangleCount == kTorusTriangles; }
+bool firstPass(const VisibilityCall& q) { return q.pass % 2 == 0; }
 
 // Object level: 0, 1 and 2 are never fully visible; 3 (last in pass 1) is fully visible in pass 1
 // only, so CULLIDE keeps it while each of its pairs is freed. Triangle level: 0 is fully visible
@@ -46,8 +46,8 @@ bool firstPass(const OracleCall& q) { return q.pass % 2 == 0; }
 // 16 in pass 2; 2's triangles from 16 on in pass 1 and all of them in pass 2; none of 3's ever.
 // No triangle of 0..2 is fully visible in both passes except 0's even ones, 1's odd ones below 16
 // and 2's from 16 on, which CULLIDE prunes too.
-bool scriptedAnswer(const OracleCall& q) {
-  if (q.kind != OracleCall::Kind::QueryRange) return false;
+bool scriptedAnswer(const VisibilityCall& q) {
+  if (q.kind != VisibilityCall::Kind::QueryRange) return false;
   if (objectQuery(q)) return q.object == 3 && firstPass(q);
   const std::uint32_t t = q.range.firstTriangle;
   switch (q.object) {
@@ -68,8 +68,8 @@ std::vector<std::uint32_t> trianglesWhere(const std::function<bool(std::uint32_t
 TEST(QuickCullideOracle, ClassificationFreesPairsThatCullidesPcsKeeps) {
   const auto scene = fourTori();
   const auto poses = stackedPoses();
-  ScriptedVisibilityOracle forCullide([](const OracleCall& q, auto) { return scriptedAnswer(q); });
-  ScriptedVisibilityOracle forQuick([](const OracleCall& q, auto) { return scriptedAnswer(q); });
+  ScriptedVisibilityOracle forCullide([](const VisibilityCall& q, auto) { return scriptedAnswer(q); });
+  ScriptedVisibilityOracle forQuick([](const VisibilityCall& q, auto) { return scriptedAnswer(q); });
   Cullide cullide(StrategyOptions{});
   cullide.attach(scene, forCullide);
   QuickCullide quick(StrategyOptions{});
@@ -134,8 +134,8 @@ TEST(QuickCullideOracle, RunsCullidesPassesInCullidesOrder) {
   // Nothing fully visible: nothing is freed, so both draw the same pieces in the same passes.
   const auto scene = fourTori();
   const auto poses = stackedPoses();
-  ScriptedVisibilityOracle forCullide([](const OracleCall&, auto) { return false; });
-  ScriptedVisibilityOracle forQuick([](const OracleCall&, auto) { return false; });
+  ScriptedVisibilityOracle forCullide([](const VisibilityCall&, auto) { return false; });
+  ScriptedVisibilityOracle forQuick([](const VisibilityCall&, auto) { return false; });
   Cullide cullide(StrategyOptions{});
   cullide.attach(scene, forCullide);
   QuickCullide quick(StrategyOptions{});
@@ -164,7 +164,7 @@ TEST(QuickCullideOracle, RunsCullidesPassesInCullidesOrder) {
 TEST(QuickCullideOracle, NothingLeftWhenEveryPieceIsFullyVisible) {
   const auto scene = fourTori();
   const auto poses = stackedPoses();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return true; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
   QuickCullide quick(StrategyOptions{});
   quick.attach(scene, oracle);
   const auto result = quick.cull({poses, 0});
@@ -215,13 +215,7 @@ TEST(QuickCullideOracle, NoFreedPairEverTouchesOnRandomBoxes) {
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> centre(0.0, 4.0), half(0.2, 0.8);
-    std::vector<Aabb> boxes;
-    for (int i = 0; i < 14; ++i) {
-      const Eigen::Vector3d c(centre(rng), centre(rng), centre(rng));
-      const Eigen::Vector3d h(half(rng), half(rng), half(rng));
-      boxes.emplace_back(c - h, c + h);
-    }
+    const std::vector<Aabb> boxes = testing::randomBoxes(rng, 14, 4.0);
     auto s = testing::boxScene(boxes);
     testing::GeometricOracle forQuick(s.scene), forCullide(s.scene);
     QuickCullide quick(StrategyOptions{});

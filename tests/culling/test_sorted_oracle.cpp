@@ -25,10 +25,10 @@ testing::BoxScene fourBoxes() {
                             box(5, 5.5, 0, 0.5, 1, 1.5), box(1, 1.5, 2, 2.5, 3, 3.5)});
 }
 
-std::vector<const OracleCall*> passStarts(const ScriptedVisibilityOracle& oracle) {
-  std::vector<const OracleCall*> out;
+std::vector<const VisibilityCall*> passStarts(const ScriptedVisibilityOracle& oracle) {
+  std::vector<const VisibilityCall*> out;
   for (const auto& c : oracle.log())
-    if (c.kind == OracleCall::Kind::BeginPass) out.push_back(&c);
+    if (c.kind == VisibilityCall::Kind::BeginPass) out.push_back(&c);
   return out;
 }
 
@@ -48,7 +48,7 @@ std::vector<ObjectId> membersOf(const CullingResult& r) {
 
 TEST(SortedOracle, PassOneFarToNearAlongPlusAxisPassTwoReversedFromTheOtherSideOneClear) {
   auto s = fourBoxes();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return true; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
   DepthSortedCulling sorted(StrategyOptions{});
   sorted.attach(s.scene, oracle);
   const auto result = sorted.cull({s.poses, 0});
@@ -71,15 +71,15 @@ TEST(SortedOracle, PassOneFarToNearAlongPlusAxisPassTwoReversedFromTheOtherSideO
   // Each object is queried, then drawn, before the next one.
   const auto& log = oracle.log();
   for (std::size_t i = 0; i + 1 < log.size(); ++i) {
-    if (log[i].kind != OracleCall::Kind::QueryRange) continue;
-    EXPECT_EQ(log[i + 1].kind, OracleCall::Kind::WriteRange);
+    if (log[i].kind != VisibilityCall::Kind::QueryRange) continue;
+    EXPECT_EQ(log[i + 1].kind, VisibilityCall::Kind::WriteRange);
     EXPECT_EQ(log[i + 1].object, log[i].object);
   }
 }
 
 TEST(SortedOracle, NothingVisibleRunsEveryAxisAtBothLevelsInDepthOrder) {
   auto s = fourBoxes();
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return false; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
   DepthSortedCulling sorted(StrategyOptions{});
   sorted.attach(s.scene, oracle);
   const auto result = sorted.cull({s.poses, 0});
@@ -117,7 +117,7 @@ TEST(SortedOracle, AnObjectIsPrunedOnlyWhenFullyVisibleInBothPasses) {
   auto s = fourBoxes();
   // Object level: 0 hidden in pass 1 only, 2 hidden in pass 2 only, 1 and 3 visible in both.
   // Triangle level: everything hidden.
-  ScriptedVisibilityOracle oracle([](const OracleCall& q, auto) {
+  ScriptedVisibilityOracle oracle([](const VisibilityCall& q, auto) {
     if (q.range.triangleCount == 1) return false;
     const bool first = q.pass % 2 == 0;
     if (q.object == 0) return !first;
@@ -134,7 +134,7 @@ TEST(SortedOracle, AnObjectIsPrunedOnlyWhenFullyVisibleInBothPasses) {
 TEST(SortedOracle, TheSortedListsFollowTheObjectsAcrossFrames) {
   auto s = testing::boxScene({box(0, 1, 0, 1, 0, 1), box(0.5, 1.5, 0, 1, 0, 1),
                               box(2, 3, 0, 1, 0, 1), box(4, 5, 0, 1, 0, 1)});
-  ScriptedVisibilityOracle oracle([](const OracleCall&, auto) { return true; });
+  ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
   DepthSortedCulling sorted(StrategyOptions{});
   sorted.attach(s.scene, oracle);
 
@@ -223,13 +223,8 @@ TEST(SortedOracle, KeepsEveryTouchingPairOfTrianglesOnRandomBoxes) {
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> centre(0.0, 4.0), half(0.2, 0.8);
-    std::vector<Aabb> boxes;
-    for (int i = 0; i < 14; ++i) {
-      const Eigen::Vector3d c(centre(rng), centre(rng), centre(rng));
-      const Eigen::Vector3d h(half(rng), half(rng), half(rng));
-      boxes.emplace_back(c - h, c + h);
-    }
+    const std::vector<Aabb> boxes = testing::randomBoxes(rng, 14, 4.0);
+    std::uniform_real_distribution<double> half(0.2, 0.8);  // the second frame's moves
     auto s = testing::boxScene(boxes);
     testing::GeometricOracle g(s.scene);
     DepthSortedCulling sorted(StrategyOptions{});

@@ -49,12 +49,10 @@ std::optional<testing::RandomScene> makeScene(SceneKind kind) {
     case SceneKind::Tori: return testing::randomTori(30, 1.2, 2, 11);
     case SceneKind::ToriAndPlanes: return testing::randomTori(20, 1.2, 2, 12, true);
     case SceneKind::Dragons: {
-      const auto path = testing::findDragon();
-      if (!path) return std::nullopt;
+      auto dragon = testing::loadUnitDragon();
+      if (!dragon) return std::nullopt;
       testing::RandomScene s;
-      Mesh dragon = loadMesh(*path).mesh;
-      normaliseMesh(dragon, 1.0);
-      s.scene.meshes.push_back(std::move(dragon));
+      s.scene.meshes.push_back(std::move(*dragon));
       // Three dragons, one frame: CULLIDE tests each of their 143k triangles in six passes, about
       // 860k occlusion queries at 10-20 us each on llvmpipe, per resolution.
       constexpr int kDragons = 3;
@@ -62,7 +60,7 @@ std::optional<testing::RandomScene> makeScene(SceneKind kind) {
       std::mt19937_64 rng(13);
       for (int f = 0; f < 1; ++f) {
         std::vector<Pose> poses;
-        for (int i = 0; i < kDragons; ++i) poses.push_back(testing::randomPose(rng, 0.3));
+        for (int i = 0; i < kDragons; ++i) poses.push_back(testing::randomPose(rng, -0.3, 0.3));
         s.frames.push_back(std::move(poses));
       }
       return s;

@@ -2,12 +2,11 @@
 // Scenes for the exact-phase tests: tori at random poses, dense enough that many interpenetrate,
 // and the world transform the exact phase and the ground truth apply to vertices.
 #include <cstdint>
-#include <random>
 #include <vector>
 
 #include "core/Pose.h"
-#include "scenes/ProceduralMeshes.h"
 #include "scenes/SceneGeometry.h"
+#include "tests/common/RandomScenes.h"
 
 namespace cdb::testing {
 
@@ -18,33 +17,18 @@ inline constexpr int kRepeats = 3;
 inline constexpr int kRepeats = 1;
 #endif
 
-inline Pose randomPose(std::mt19937_64& rng, double boxSide) {
-  std::uniform_real_distribution<double> u(0.0, boxSide);
-  std::normal_distribution<double> g;
-  Pose p;
-  p.rotation = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized();
-  p.translation = {u(rng), u(rng), u(rng)};
-  return p;
-}
-
-// `count` objects of one torus mesh; `frames` independent random pose sets in a cube of `boxSide`.
-struct ToriScene {
-  SceneGeometry scene;
-  std::vector<std::vector<Pose>> frames;
-};
-
-inline ToriScene randomTori(int count, double boxSide, int frames, std::uint64_t seed,
-                            int rings = 20, int sides = 20) {
-  ToriScene s;
-  s.scene.meshes.push_back(makeTorus(0.5, 0.2, rings, sides));
-  for (int i = 0; i < count; ++i) s.scene.objects.push_back({0, false, "torus"});
-  std::mt19937_64 rng(seed);
-  for (int f = 0; f < frames; ++f) {
-    std::vector<Pose> poses;
-    for (int i = 0; i < count; ++i) poses.push_back(randomPose(rng, boxSide));
-    s.frames.push_back(std::move(poses));
-  }
-  return s;
+// `count` objects of one torus mesh; `frames` independent random pose sets in [0, boxSide)^3.
+inline RandomScene randomTori(int count, double boxSide, int frames, std::uint64_t seed,
+                              int rings = 20, int sides = 20) {
+  RandomToriSpec spec;
+  spec.count = count;
+  spec.lo = 0.0;
+  spec.hi = boxSide;
+  spec.frames = frames;
+  spec.seed = seed;
+  spec.rings = rings;
+  spec.sides = sides;
+  return randomTori(spec);
 }
 
 // The world transform in the form the exact phase and the ground truth use, so that brute-force
@@ -66,6 +50,14 @@ inline Mesh unitCube() {
   m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
   return m;
+}
+
+// `count` objects of one unitCube() mesh, each at the origin until a test poses it.
+inline SceneGeometry unitCubes(int count) {
+  SceneGeometry scene;
+  scene.meshes.push_back(unitCube());
+  for (int i = 0; i < count; ++i) scene.objects.push_back({0, false, "cube"});
+  return scene;
 }
 
 }  // namespace cdb::testing

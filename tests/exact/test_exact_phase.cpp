@@ -130,9 +130,7 @@ TEST(ExactPhase, MatchesGroundTruthWithTriangleSubsets) {
 
 TEST(ExactPhase, SmallSubsetFindsItsCollision) {
   // One triangle of each cube, the two faces touching: the few-triangle path.
-  SceneGeometry scene;
-  scene.meshes.push_back(testing::unitCube());
-  scene.objects = {{0, false, "cube"}, {0, false, "cube"}};
+  const SceneGeometry scene = testing::unitCubes(2);
   std::vector<Pose> poses(2);
   poses[1].translation = {1, 0.25, 0.25};
   ExactPhase exact(scene);
@@ -165,9 +163,7 @@ TEST(ExactPhase, PairInSeveralSetsIsReportedOnce) {
 }
 
 TEST(ExactPhase, CubesSharingAFaceTouch) {
-  SceneGeometry scene;
-  scene.meshes.push_back(testing::unitCube());
-  for (int i = 0; i < 3; ++i) scene.objects.push_back({0, false, "cube"});
+  const SceneGeometry scene = testing::unitCubes(3);
   std::vector<Pose> poses(3);
   poses[1].translation = {1, 0, 0};          // face to face with cube 0: their boxes only touch
   poses[2].translation = {2 + 1e-12, 0, 0};  // 1e-12 away from cube 1
@@ -222,9 +218,7 @@ TEST(ExactPhase, ListedPairsAreTheOnlyOnesTested) {
 
 TEST(ExactPhase, ListedPairSidesRestrictTheTriangles) {
   // Cube 0's +x face touches cube 1's -x face; cube 1's top face is above cube 0.
-  SceneGeometry scene;
-  scene.meshes.push_back(testing::unitCube());
-  scene.objects = {{0, false, "cube"}, {0, false, "cube"}};
+  const SceneGeometry scene = testing::unitCubes(2);
   std::vector<Pose> poses(2);
   poses[1].translation = {1, 0.25, 0.25};
   ExactPhase exact(scene);

@@ -53,7 +53,7 @@ TEST(GroundTruth, MatchesBruteForceWithMixedMeshes) {
   s.scene.objects.push_back({2, false, "empty"});
   std::mt19937_64 rng(5);
   for (auto& poses : s.frames)
-    for (int k = 0; k < 3; ++k) poses.push_back(testing::randomPose(rng, 1.0));
+    for (int k = 0; k < 3; ++k) poses.push_back(testing::randomPose(rng, 0.0, 1.0));
   const GroundTruth truth(s.scene);
   for (const auto& poses : s.frames) {
     const CollisionReport expected = bruteForce(s.scene, poses);
@@ -64,9 +64,7 @@ TEST(GroundTruth, MatchesBruteForceWithMixedMeshes) {
 }
 
 TEST(GroundTruth, CubesSharingAFaceTouch) {
-  SceneGeometry scene;
-  scene.meshes.push_back(testing::unitCube());
-  for (int i = 0; i < 3; ++i) scene.objects.push_back({0, false, "cube"});
+  const SceneGeometry scene = testing::unitCubes(3);
   std::vector<Pose> poses(3);
   poses[1].translation = {1, 0, 0};          // face to face with cube 0
   poses[2].translation = {2 + 1e-12, 0, 0};  // 1e-12 away from cube 1

@@ -71,10 +71,10 @@ TEST(RecordingBackend, ForwardsLogsAndReplays) {
   EXPECT_EQ(recorded.passes, 5u);
   EXPECT_EQ(recorded.depthClears, 3u);
   EXPECT_EQ(recorded.fetches, 1u);
-  const std::vector<RecordedOp>& ops = recording.ops();
+  const std::vector<VisibilityCall>& ops = recording.ops();
   ASSERT_FALSE(ops.empty());
-  EXPECT_EQ(ops.front().kind, RecordedOp::Kind::AttachScene);
-  EXPECT_EQ(ops.back().kind, RecordedOp::Kind::FetchResults);
+  EXPECT_EQ(ops.front().kind, VisibilityCall::Kind::AttachScene);
+  EXPECT_EQ(ops.back().kind, VisibilityCall::Kind::FetchResults);
   const std::vector<std::uint8_t> answers = ops.back().answers;
   ASSERT_EQ(answers.size(), 30u);
   // The dropped-in tori collide with their neighbours: not everything is fully visible.
@@ -147,7 +147,7 @@ TEST(GlDrawFloor, PreparedRecordingsReplayAgainAndAgainEachOnItsScene) {
 
 TEST(GlDrawFloor, RecordingWithoutSceneIsRejected) {
   GlDrawFloor floor(test::sharedGlContext());
-  std::vector<RecordedOp> ops(1);
+  std::vector<VisibilityCall> ops(1);
   EXPECT_THROW(floor.replay(ops), InputError);
 }
 

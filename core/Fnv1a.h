@@ -1,7 +1,9 @@
 #pragma once
-// 64-bit FNV-1a over values in a fixed byte order (little-endian), so that hashes and
-// fingerprints are the same on every machine.
+// 64-bit FNV-1a. The typed adders write values in a fixed byte order (little-endian), so that
+// hashes and fingerprints are the same on every machine; bytes() takes memory as it lies, for keys
+// that never leave the process.
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -15,6 +17,10 @@ class Fnv1a {
   }
   void u64(std::uint64_t v) {
     for (int i = 0; i < 8; ++i) byte(std::uint8_t(v >> (8 * i)));
+  }
+  void bytes(const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) byte(p[i]);
   }
   void i64(std::int64_t v) { u64(std::uint64_t(v)); }
   void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }  // the IEEE-754 bits
