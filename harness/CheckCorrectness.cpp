@@ -5,7 +5,6 @@
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/BackendWarmUp.h"
-#include "harness/FrameDetection.h"
 
 namespace cdb {
 
@@ -43,13 +42,13 @@ std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const 
         StrategyOptions options;
         options.resolution = resolution;
         options.culling = recorded.config.culling;
-        auto strategy = registry.create(name, options);
-        strategy->attach(scene, *backend);
+        auto detector = registry.createDetector(name, options, *backend, exact);
+        detector->attach(scene);
         warmUpBackend(*backend, scene, recorded.recording.frame(0), resolution);
         for (std::size_t i = 0; i < c.frames.size(); ++i) {
           const int f = c.frames[i];
-          const DetectedFrame detected = detectFrame(
-              *strategy, exact, recorded.recording.frame(static_cast<std::uint32_t>(f)), f);
+          const DetectedFrame detected =
+              detector->detect({recorded.recording.frame(static_cast<std::uint32_t>(f)), f});
           CorrectnessRow row;
           row.backend = drawsNothing ? "-" : backendName;
           row.scene = c.scene.label();
@@ -58,8 +57,7 @@ std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const 
           row.resolution = drawsNothing ? 0 : resolution;
           row.truthPairs = truth[i].size();
           row.foundPairs = detected.report.collidingPairs.size();
-          row.comparison = compareWithTruth(truth[i], detected.report.collidingPairs, detected.culled,
-                                            scene.objectCount());
+          row.comparison = compareWithTruth(truth[i], detected, scene.objectCount());
           rows.push_back(std::move(row));
         }
         if (drawsNothing) break;

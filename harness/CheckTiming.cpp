@@ -89,10 +89,18 @@ std::vector<RatioMeasurement> measureFloors(BackendResources& resources, const s
     const RecordedScene& recorded = scenes.get(c.scene);
     (void)framePoses(recorded, c.frame, c.scene.label());
     for (const auto& name : strategies) {
-      FloorSetup setup(resources, backend, recorded, name, c.resolution, c.frame, registry);
-      if (setup.work().draws == 0 && setup.work().queries == 0) {
+      const auto noFloor = [&] {
         if (std::find(withoutFloor.begin(), withoutFloor.end(), name) == withoutFloor.end())
           withoutFloor.push_back(name);
+      };
+      // A CPU peer has no culling strategy, so no backend work.
+      if (registry.kind(name) == StrategyRegistry::Kind::CpuPeer) {
+        noFloor();
+        continue;
+      }
+      FloorSetup setup(resources, backend, recorded, name, c.resolution, c.frame, registry);
+      if (setup.work().draws == 0 && setup.work().queries == 0) {
+        noFloor();
         continue;
       }
       const auto replaySeconds = [&] {

@@ -10,34 +10,22 @@
 #include "RandomScenes.h"
 #include "culling/StrategyRegistry.h"
 #include "culling/exact/GroundTruth.h"
-#include "culling/visibility/ScriptedVisibilityOracle.h"
 #include "scenes/ProceduralMeshes.h"
 
 namespace cdb {
 namespace {
 
-std::vector<std::string> registeredPeers() {
-  std::vector<std::string> peers;
-  for (const auto& name : StrategyRegistry::builtin().names())
-    if (StrategyRegistry::builtin().isCpuPeer(name)) peers.push_back(name);
-  return peers;
-}
-
 // Pairs a peer decides on each frame of `scene`.
 std::vector<std::vector<ObjectPair>> peerPairs(const std::string& peer,
                                                const testing::RandomScene& scene) {
-  ScriptedVisibilityOracle unused([](const OracleCall&, std::span<const OracleCall>) {
-    ADD_FAILURE() << "a peer queried the visibility backend";
-    return true;
-  });
-  auto strategy = StrategyRegistry::builtin().create(peer, {});
-  strategy->attach(scene.scene, unused);
+  auto detector = StrategyRegistry::builtin().createPeer(peer, {});
+  detector->attach(scene.scene);
   std::vector<std::vector<ObjectPair>> out;
   for (std::size_t f = 0; f < scene.frames.size(); ++f) {
-    const CullingResult r = strategy->cull({scene.frames[f], int(f)});
-    EXPECT_TRUE(r.decided.has_value()) << peer;
-    EXPECT_TRUE(r.sets.empty()) << peer;
-    out.push_back(r.decided ? r.decided->collidingPairs : std::vector<ObjectPair>{});
+    const DetectedFrame d = detector->detect({scene.frames[f], int(f)});
+    EXPECT_FALSE(d.culled.has_value()) << peer;
+    EXPECT_EQ(d.exactMs, 0.0) << peer;
+    out.push_back(d.report.collidingPairs);
   }
   return out;
 }
@@ -122,7 +110,8 @@ TEST_P(PeerTest, RandomToriAgreeWithGroundTruth) {
   EXPECT_GT(truthPairs, 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Peers, PeerTest, ::testing::ValuesIn(registeredPeers()),
+INSTANTIATE_TEST_SUITE_P(Peers, PeerTest, ::testing::ValuesIn(StrategyRegistry::builtin().names(
+                                             StrategyRegistry::Kind::CpuPeer)),
                          [](const auto& param) { return param.param; });
 
 }  // namespace
