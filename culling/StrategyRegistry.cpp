@@ -37,11 +37,11 @@ const StrategyRegistry& StrategyRegistry::builtin() {
           [](const StrategyOptions& o) { return std::make_unique<QuickCullide>(o); });
     r.add("all_pairs", "reference: every object in one set, no culling; the exact phase alone",
           [](const StrategyOptions& o) { return std::make_unique<AllPairs>(o); }, Kind::Reference);
-    r.addPeer("fcl", "CPU peer: FCL 0.7, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
+    r.addPeer("fcl", "CPU peer: FCL, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
               [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); });
-    r.addPeer("bullet", "CPU peer: Bullet 3.24 (double), btDbvtBroadphase, GImpact meshes, margin 0",
+    r.addPeer("bullet", "CPU peer: Bullet (double), btDbvtBroadphase, GImpact meshes, margin 0",
               [](const StrategyOptions& o) { return std::make_unique<BulletPeer>(o); });
-    r.addPeer("ode", "CPU peer: ODE 0.16, hash space, OPCODE trimesh-trimesh collider",
+    r.addPeer("ode", "CPU peer: ODE, hash space, OPCODE trimesh-trimesh collider",
               [](const StrategyOptions& o) { return std::make_unique<OdePeer>(o); });
     return r;
   }();

@@ -93,7 +93,7 @@ struct BulletPeer::Impl {
   std::vector<std::unique_ptr<btCollisionObject>> objects;
 };
 
-BulletPeer::BulletPeer(const StrategyOptions&) : impl_(std::make_unique<Impl>()) {}
+BulletPeer::BulletPeer(const StrategyOptions&) {}
 
 BulletPeer::~BulletPeer() = default;
 

@@ -1,5 +1,5 @@
 #pragma once
-// Bullet (3.24, built in double precision) as a peer: a collision world with the dynamic AABB
+// Bullet (built in double precision) as a peer: a collision world with the dynamic AABB
 // tree broad phase (btDbvtBroadphase) and GImpact triangle meshes, Bullet's concave-concave
 // collider.
 #include <memory>

@@ -65,7 +65,7 @@ struct FclPeer::Impl {
   FrameState state;
 };
 
-FclPeer::FclPeer(const StrategyOptions&) : impl_(std::make_unique<Impl>()) {}
+FclPeer::FclPeer(const StrategyOptions&) {}
 
 FclPeer::~FclPeer() = default;
 

@@ -1,5 +1,5 @@
 #pragma once
-// FCL (Flexible Collision Library, 0.7) as a peer: its dynamic AABB tree broad phase over one
+// FCL (Flexible Collision Library) as a peer: its dynamic AABB tree broad phase over one
 // OBBRSS bounding-volume hierarchy per mesh, and fcl::collide on each broad-phase pair.
 #include <memory>
 

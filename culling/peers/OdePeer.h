@@ -1,5 +1,5 @@
 #pragma once
-// ODE (0.16) as a peer: its own broad phase (a multi-resolution hash space) over one dGeomTriMesh
+// ODE as a peer: its own broad phase (a multi-resolution hash space) over one dGeomTriMesh
 // per object, and dCollide with OPCODE's trimesh-trimesh collider on each pair the space reports.
 // This is ODE's collision detection only: the dynamics that record the frames live in
 // scenes/RigidBodySimulation.
