@@ -331,7 +331,7 @@ RunSummary runScenario(const RunOptions& options) {
 
   const auto rows = store.load(plan);
   nlohmann::json meta;
-  meta["cdbench_version"] = "0.1.0";
+  meta["cdbench_version"] = CDBENCH_VERSION;  // CMake's project version
   meta["created_utc"] = utcTimestamp();
   meta["command_line"] = options.commandLine;
   meta["machine"] = shardMeta["machine"];
