@@ -8,8 +8,11 @@
 #include <vector>
 
 #include "RandomScenes.h"
+#include "core/Errors.h"
 #include "culling/StrategyRegistry.h"
+#include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
+#include "culling/visibility/ScriptedVisibilityOracle.h"
 #include "scenes/ProceduralMeshes.h"
 
 namespace cdb {
@@ -108,6 +111,39 @@ TEST_P(PeerTest, RandomToriAgreeWithGroundTruth) {
     EXPECT_EQ(found[f], expected) << GetParam() << " frame " << f;
   }
   EXPECT_GT(truthPairs, 0u);
+}
+
+// Every entry makes a detector of its own name; only the CPU peers make it without a culling
+// strategy, and they never ask the backend they are offered.
+TEST(DetectorRegistry, PeersAreDetectorsWithoutACullingStrategy) {
+  const auto& registry = StrategyRegistry::builtin();
+  Pose side;
+  side.translation = {0.6, 0, 0};
+  const auto scene = torusPair(side);
+  ExactPhase exact(scene.scene);
+  ScriptedVisibilityOracle oracle([](const OracleCall&, std::span<const OracleCall>) { return false; });
+  oracle.attachScene(scene.scene);
+  std::size_t peers = 0;
+  for (const auto& name : registry.names()) {
+    const bool peer = registry.kind(name) == StrategyRegistry::Kind::CpuPeer;
+    peers += peer;
+    if (peer) {
+      EXPECT_THROW((void)registry.create(name, {}), InputError) << name;
+    } else {
+      EXPECT_THROW((void)registry.createPeer(name, {}), InputError) << name;
+    }
+    auto detector = registry.createDetector(name, {}, oracle, exact);
+    EXPECT_EQ(detector->name(), name);
+    detector->attach(scene.scene);
+    const std::size_t asked = oracle.log().size();
+    const DetectedFrame d = detector->detect({scene.frames[0], 0});
+    EXPECT_EQ(d.culled.has_value(), !peer) << name;
+    if (peer) {
+      EXPECT_EQ(oracle.log().size(), asked) << name;
+    }
+  }
+  EXPECT_EQ(peers, registry.names(StrategyRegistry::Kind::CpuPeer).size());
+  EXPECT_GT(peers, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Peers, PeerTest, ::testing::ValuesIn(StrategyRegistry::builtin().names(
