@@ -6,8 +6,8 @@
 // detection and the resolution changes nothing.
 //
 // Set-up per run of the benchmark function, untimed: the backend, its warm-up at the resolution
-// (shader variants, framebuffer), the detector's attach (hierarchies) and one detection of the frame:
-// strategies keep state from frame to frame (ours keeps its sorted lists) and the first cull
+// (shader variants, framebuffer), the detector's attach (hierarchies) and one detection of the
+// frame: strategies keep state from frame to frame (ours keeps its sorted lists) and the first cull
 // allocates. The timed iterations then cull the same frame again, as a strategy meeting a frame
 // like the previous one does.
 #include <cstdint>

@@ -55,10 +55,13 @@ void StrategyRegistry::add(std::string name, std::string description, StrategyFa
 }
 
 void StrategyRegistry::addPeer(std::string name, std::string description, PeerFactory factory) {
-  entries_.push_back({std::move(name), std::move(description), {}, std::move(factory), Kind::CpuPeer});
+  entries_.push_back(
+      {std::move(name), std::move(description), {}, std::move(factory), Kind::CpuPeer});
 }
 
-StrategyRegistry::Kind StrategyRegistry::kind(std::string_view name) const { return get(name).kind; }
+StrategyRegistry::Kind StrategyRegistry::kind(std::string_view name) const {
+  return get(name).kind;
+}
 
 const StrategyRegistry::Entry& StrategyRegistry::get(std::string_view name) const {
   validate({std::string(name)});
@@ -109,10 +112,11 @@ std::unique_ptr<CullingStrategy> StrategyRegistry::create(std::string_view name,
   return e.strategy(options);
 }
 
-std::unique_ptr<CollisionDetector> StrategyRegistry::createPeer(std::string_view name,
-                                                                const StrategyOptions& options) const {
+std::unique_ptr<CollisionDetector> StrategyRegistry::createPeer(
+    std::string_view name, const StrategyOptions& options) const {
   const Entry& e = get(name);
-  if (e.kind != Kind::CpuPeer) throw InputError("'" + e.name + "' is a culling strategy, not a CPU peer");
+  if (e.kind != Kind::CpuPeer)
+    throw InputError("'" + e.name + "' is a culling strategy, not a CPU peer");
   return e.peer(options);
 }
 

@@ -40,8 +40,8 @@ TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
   return c;
 }
 
-TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth, const DetectedFrame& detected,
-                                 std::size_t objectCount) {
+TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
+                                 const DetectedFrame& detected, std::size_t objectCount) {
   const std::vector<ObjectPair>& found = detected.report.collidingPairs;
   if (detected.culled) return compareWithTruth(truth, found, detected.culled->sets, objectCount);
   TruthComparison c = compareWithTruth(truth, found, PotentiallyCollidingSets{}, objectCount);

@@ -15,7 +15,8 @@ DetectedFrame CpuPeer::detect(const FrameInput& frame) {
   DetectedFrame out;
   out.report.collidingPairs = std::move(pairs);
   out.report.pairsTested = found.pairsTested;
-  out.cullMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  out.cullMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
 

@@ -121,7 +121,8 @@ TEST(DetectorRegistry, PeersAreDetectorsWithoutACullingStrategy) {
   side.translation = {0.6, 0, 0};
   const auto scene = torusPair(side);
   ExactPhase exact(scene.scene);
-  ScriptedVisibilityOracle oracle([](const OracleCall&, std::span<const OracleCall>) { return false; });
+  ScriptedVisibilityOracle oracle(
+      [](const OracleCall&, std::span<const OracleCall>) { return false; });
   oracle.attachScene(scene.scene);
   std::size_t peers = 0;
   for (const auto& name : registry.names()) {
@@ -146,9 +147,10 @@ TEST(DetectorRegistry, PeersAreDetectorsWithoutACullingStrategy) {
   EXPECT_GT(peers, 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Peers, PeerTest, ::testing::ValuesIn(StrategyRegistry::builtin().names(
-                                             StrategyRegistry::Kind::CpuPeer)),
-                         [](const auto& param) { return param.param; });
+INSTANTIATE_TEST_SUITE_P(
+    Peers, PeerTest,
+    ::testing::ValuesIn(StrategyRegistry::builtin().names(StrategyRegistry::Kind::CpuPeer)),
+    [](const auto& param) { return param.param; });
 
 }  // namespace
 }  // namespace cdb

@@ -31,8 +31,9 @@ StrategyRegistry registryWith(const std::string& target, Wrap wrap) {
   const auto& builtin = StrategyRegistry::builtin();
   for (const auto& name : builtin.names()) {
     if (builtin.kind(name) == StrategyRegistry::Kind::CpuPeer) {
-      r.addPeer(name, builtin.description(name),
-                [name](const StrategyOptions& o) { return StrategyRegistry::builtin().createPeer(name, o); });
+      r.addPeer(name, builtin.description(name), [name](const StrategyOptions& o) {
+        return StrategyRegistry::builtin().createPeer(name, o);
+      });
       continue;
     }
     r.add(name, builtin.description(name),
