@@ -1,13 +1,13 @@
 // cull/<env>/<strategy>/<backend>/res:<r>: a strategy's cull() of the environment's measured
 // frame on a visibility backend, what `cdbench run` reports as cull_ms: each iteration is one
-// detectFrame() (the per-frame function the runner times), and the iteration's time is its
+// detect() of the registry's detector (what the runner times), and the iteration's time is its
 // culling part, without the exact phase (exact/... and the exact_ms counter). For the CPU peers,
-// which decide the colliding pairs themselves and use no backend (backend "-"), cull() is their
-// whole collision detection and the resolution changes nothing.
+// detectors by themselves that use no backend (backend "-"), it is their whole collision
+// detection and the resolution changes nothing.
 //
 // Set-up per run of the benchmark function, untimed: the backend, its warm-up at the resolution
-// (shader variants, framebuffer), the strategy's attach (hierarchies) and one cull of the frame:
-// strategies keep state from frame to frame (ours keeps its sorted lists) and the first cull
+// (shader variants, framebuffer), the detector's attach (hierarchies) and one detection of the
+// frame: strategies keep state from frame to frame (ours keeps its sorted lists) and the first cull
 // allocates. The timed iterations then cull the same frame again, as a strategy meeting a frame
 // like the previous one does.
 #include <cstdint>
@@ -17,7 +17,6 @@
 #include "culling/exact/ExactPhase.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/BackendWarmUp.h"
-#include "harness/FrameDetection.h"
 
 namespace cdb::bench {
 
@@ -31,19 +30,19 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
   const int frame = frames.measured(environment).frame;
   const auto backend = warmedUpBackend(frames.resources(), backendName, recorded.config.culling,
                                        recorded.scene, poses, resolution);
-  auto strategy = StrategyRegistry::builtin().create(
-      strategyName, StrategyOptions{resolution, recorded.config.culling});
-  strategy->attach(recorded.scene, *backend);
   ExactPhase exact(recorded.scene);
-  (void)detectFrame(*strategy, exact, poses, frame);
+  auto detector = StrategyRegistry::builtin().createDetector(
+      strategyName, StrategyOptions{resolution, recorded.config.culling}, *backend, exact);
+  detector->attach(recorded.scene);
+  (void)detector->detect({poses, frame});
 
   CullingCounters total;
   double exactMs = 0;
   std::uint64_t collidingPairs = 0;
   for (auto _ : state) {
-    const DetectedFrame detected = detectFrame(*strategy, exact, poses, frame);
+    const DetectedFrame detected = detector->detect({poses, frame});
     state.SetIterationTime(detected.cullMs / 1e3);
-    const CullingCounters& c = detected.culled.counters;
+    const CullingCounters c = detected.cullingCounters();
     total.visibility += c.visibility;
     total.sets += c.sets;
     total.pcsSize += c.pcsSize;

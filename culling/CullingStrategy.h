@@ -1,10 +1,10 @@
 #pragma once
-// The one interface the harness knows: a frame of poses in, potentially colliding sets and
-// counters out. A strategy is created by name from the StrategyRegistry, attached once to a
-// scene and a visibility backend, then called once per frame.
+// A culling strategy: a frame of poses in, potentially colliding sets and counters out, for the
+// exact phase to test. A strategy is created by name from the StrategyRegistry, attached once to a
+// scene and a visibility backend, then called once per frame; the harness times it inside an
+// ImageBasedDetector (culling/CollisionDetector.h).
 #include <cstdint>
 #include <memory>
-#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -39,9 +39,6 @@ struct CullingCounters {
 struct CullingResult {
   PotentiallyCollidingSets sets;
   CullingCounters counters;
-  // Set by strategies that do the whole collision detection themselves (the CPU peers): the
-  // harness then runs no exact phase and takes these pairs (sorted, unique) as the answer.
-  std::optional<CollisionReport> decided;
 };
 
 struct FrameInput {

@@ -1,6 +1,9 @@
 #include "culling/StrategyRegistry.h"
 
+#include <stdexcept>
+
 #include "core/Errors.h"
+#include "culling/ImageBasedDetector.h"
 #include "culling/peers/BulletPeer.h"
 #include "culling/peers/FclPeer.h"
 #include "culling/peers/OdePeer.h"
@@ -34,24 +37,35 @@ const StrategyRegistry& StrategyRegistry::builtin() {
           [](const StrategyOptions& o) { return std::make_unique<QuickCullide>(o); });
     r.add("all_pairs", "reference: every object in one set, no culling; the exact phase alone",
           [](const StrategyOptions& o) { return std::make_unique<AllPairs>(o); }, Kind::Reference);
-    r.add("fcl", "CPU peer: FCL 0.7, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
-          [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); }, Kind::CpuPeer);
-    r.add("bullet", "CPU peer: Bullet 3.24 (double), btDbvtBroadphase, GImpact meshes, margin 0",
-          [](const StrategyOptions& o) { return std::make_unique<BulletPeer>(o); }, Kind::CpuPeer);
-    r.add("ode", "CPU peer: ODE 0.16, hash space, OPCODE trimesh-trimesh collider",
-          [](const StrategyOptions& o) { return std::make_unique<OdePeer>(o); }, Kind::CpuPeer);
+    r.addPeer("fcl", "CPU peer: FCL, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
+              [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); });
+    r.addPeer("bullet", "CPU peer: Bullet (double), btDbvtBroadphase, GImpact meshes, margin 0",
+              [](const StrategyOptions& o) { return std::make_unique<BulletPeer>(o); });
+    r.addPeer("ode", "CPU peer: ODE, hash space, OPCODE trimesh-trimesh collider",
+              [](const StrategyOptions& o) { return std::make_unique<OdePeer>(o); });
     return r;
   }();
   return registry;
 }
 
-void StrategyRegistry::add(std::string name, std::string description, Factory factory, Kind kind) {
-  entries_.push_back({std::move(name), std::move(description), std::move(factory), kind});
+void StrategyRegistry::add(std::string name, std::string description, StrategyFactory factory,
+                           Kind kind) {
+  if (kind == Kind::CpuPeer) throw std::logic_error("a CPU peer is added with addPeer");
+  entries_.push_back({std::move(name), std::move(description), std::move(factory), {}, kind});
+}
+
+void StrategyRegistry::addPeer(std::string name, std::string description, PeerFactory factory) {
+  entries_.push_back(
+      {std::move(name), std::move(description), {}, std::move(factory), Kind::CpuPeer});
 }
 
 StrategyRegistry::Kind StrategyRegistry::kind(std::string_view name) const {
+  return get(name).kind;
+}
+
+const StrategyRegistry::Entry& StrategyRegistry::get(std::string_view name) const {
   validate({std::string(name)});
-  return find(name)->kind;
+  return *find(name);
 }
 
 const StrategyRegistry::Entry* StrategyRegistry::find(std::string_view name) const {
@@ -65,6 +79,13 @@ bool StrategyRegistry::contains(std::string_view name) const { return find(name)
 std::vector<std::string> StrategyRegistry::names() const {
   std::vector<std::string> out;
   for (const auto& e : entries_) out.push_back(e.name);
+  return out;
+}
+
+std::vector<std::string> StrategyRegistry::names(Kind kind) const {
+  std::vector<std::string> out;
+  for (const auto& e : entries_)
+    if (e.kind == kind) out.push_back(e.name);
   return out;
 }
 
@@ -85,8 +106,27 @@ void StrategyRegistry::validate(const std::vector<std::string>& names) const {
 
 std::unique_ptr<CullingStrategy> StrategyRegistry::create(std::string_view name,
                                                           const StrategyOptions& options) const {
-  validate({std::string(name)});
-  return find(name)->factory(options);
+  const Entry& e = get(name);
+  if (e.kind == Kind::CpuPeer)
+    throw InputError("'" + e.name + "' is a CPU peer, a detector by itself: no culling strategy");
+  return e.strategy(options);
+}
+
+std::unique_ptr<CollisionDetector> StrategyRegistry::createPeer(
+    std::string_view name, const StrategyOptions& options) const {
+  const Entry& e = get(name);
+  if (e.kind != Kind::CpuPeer)
+    throw InputError("'" + e.name + "' is a culling strategy, not a CPU peer");
+  return e.peer(options);
+}
+
+std::unique_ptr<CollisionDetector> StrategyRegistry::createDetector(std::string_view name,
+                                                                    const StrategyOptions& options,
+                                                                    VisibilityBackend& backend,
+                                                                    ExactPhase& exact) const {
+  const Entry& e = get(name);
+  if (e.kind == Kind::CpuPeer) return e.peer(options);
+  return std::make_unique<ImageBasedDetector>(e.strategy(options), backend, exact);
 }
 
 }  // namespace cdb

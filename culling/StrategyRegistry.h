@@ -1,13 +1,16 @@
 #pragma once
-// Strategies by name. The harness creates every strategy through here and knows nothing else of
-// them; a new strategy is one class plus one line in StrategyRegistry.cpp.
+// Detectors by name. The harness creates every detector through here and knows nothing else of
+// them; a new culling strategy or CPU peer is one class plus one line in StrategyRegistry.cpp.
 #include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "culling/CollisionDetector.h"
 #include "culling/CullingStrategy.h"
+#include "culling/exact/ExactPhase.h"
+#include "culling/visibility/VisibilityBackend.h"
 #include "scenes/ScenarioConfig.h"
 
 namespace cdb {
@@ -19,27 +22,42 @@ struct StrategyOptions {
 
 class StrategyRegistry {
  public:
-  using Factory = std::function<std::unique_ptr<CullingStrategy>(const StrategyOptions&)>;
+  using StrategyFactory = std::function<std::unique_ptr<CullingStrategy>(const StrategyOptions&)>;
+  using PeerFactory = std::function<std::unique_ptr<CollisionDetector>(const StrategyOptions&)>;
 
-  // The registry with every strategy of the project.
+  // The registry with every detector of the project.
   static const StrategyRegistry& builtin();
 
   // What an entry is: an image-based culling strategy (asks a visibility backend, leaves sets for
   // the exact phase), a reference that leaves sets without asking any backend (all_pairs), or a
-  // CPU peer (decides the colliding pairs itself, draws nothing).
+  // CPU peer (a detector by itself: decides the colliding pairs, draws nothing).
   enum class Kind { ImageBased, Reference, CpuPeer };
 
-  void add(std::string name, std::string description, Factory factory,
+  // A culling strategy (kind ImageBased or Reference).
+  void add(std::string name, std::string description, StrategyFactory factory,
            Kind kind = Kind::ImageBased);
-  // Throws InputError naming the unknown strategy and listing the known ones.
+  void addPeer(std::string name, std::string description, PeerFactory factory);
+
+  // The detector `name` stands for, not yet attached: a CPU peer alone, or the culling strategy
+  // with `backend` and `exact` (both outlive the detector; `exact` built for the scene it will be
+  // attached to). Throws InputError naming the unknown detector and listing the known ones.
+  [[nodiscard]] std::unique_ptr<CollisionDetector> createDetector(std::string_view name,
+                                                                  const StrategyOptions& options,
+                                                                  VisibilityBackend& backend,
+                                                                  ExactPhase& exact) const;
+  // The culling strategy alone; throws InputError for an unknown name or a CPU peer.
   [[nodiscard]] std::unique_ptr<CullingStrategy> create(std::string_view name,
                                                         const StrategyOptions& options) const;
+  // A CPU peer; throws InputError for an unknown name or a culling strategy.
+  [[nodiscard]] std::unique_ptr<CollisionDetector> createPeer(std::string_view name,
+                                                              const StrategyOptions& options) const;
   [[nodiscard]] bool contains(std::string_view name) const;
   [[nodiscard]] std::vector<std::string> names() const;
+  // The entries of one kind, in registration order.
+  [[nodiscard]] std::vector<std::string> names(Kind kind) const;
   [[nodiscard]] std::string description(std::string_view name) const;
   // Throws InputError for an unknown name.
   [[nodiscard]] Kind kind(std::string_view name) const;
-  [[nodiscard]] bool isCpuPeer(std::string_view name) const { return kind(name) == Kind::CpuPeer; }
   // Whether its answer or time depends on the visibility backend and the resolution.
   [[nodiscard]] bool usesBackend(std::string_view name) const { return kind(name) == Kind::ImageBased; }
   // Throws InputError for the first unknown name.
@@ -49,10 +67,12 @@ class StrategyRegistry {
   struct Entry {
     std::string name;
     std::string description;
-    Factory factory;
+    StrategyFactory strategy;  // set for ImageBased and Reference
+    PeerFactory peer;          // set for CpuPeer
     Kind kind = Kind::ImageBased;
   };
   const Entry* find(std::string_view name) const;
+  const Entry& get(std::string_view name) const;  // throws InputError for an unknown name
   std::vector<Entry> entries_;
 };
 

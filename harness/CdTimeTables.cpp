@@ -29,8 +29,6 @@ std::vector<CdTimeCell> summariseCdTimes(const std::vector<FrameRecord>& frames)
     }
     c.averageMs += f.cdMs;  // sum until the end
     c.maximumMs = std::max(c.maximumMs, f.cdMs);
-    c.averageSets += static_cast<double>(f.sets);
-    c.averageQueries += static_cast<double>(f.queries);
     c.falseNegatives += f.falseNegatives;
     ++c.frames;
   }
@@ -38,8 +36,6 @@ std::vector<CdTimeCell> summariseCdTimes(const std::vector<FrameRecord>& frames)
   for (auto& [key, c] : cells) {
     const double n = static_cast<double>(c.frames);
     c.averageMs /= n;
-    c.averageSets /= n;
-    c.averageQueries /= n;
     out.push_back(c);
   }
   return out;

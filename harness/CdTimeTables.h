@@ -19,8 +19,6 @@ struct CdTimeCell {
   double maximumMs = 0;
   std::uint64_t frames = 0;
   std::uint64_t falseNegatives = 0;
-  double averageSets = 0;
-  double averageQueries = 0;
 };
 
 // Cells in order of first appearance of (environment, strategy), then resolution, then objects.

@@ -4,7 +4,6 @@
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/BackendWarmUp.h"
-#include "harness/FrameDetection.h"
 
 namespace cdb {
 
@@ -36,13 +35,14 @@ std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const 
       const bool drawsNothing = !registry.usesBackend(name);
       if (drawsNothing && !withPeers) continue;
       for (int resolution : c.resolutions) {
-        auto strategy = registry.create(name, StrategyOptions{resolution, recorded.config.culling});
-        strategy->attach(scene, *backend);
+        auto detector = registry.createDetector(
+            name, StrategyOptions{resolution, recorded.config.culling}, *backend, exact);
+        detector->attach(scene);
         warmUpBackend(*backend, scene, recorded.recording.frame(0), resolution);
         for (std::size_t i = 0; i < c.frames.size(); ++i) {
           const int f = c.frames[i];
-          const DetectedFrame detected = detectFrame(
-              *strategy, exact, recorded.recording.frame(static_cast<std::uint32_t>(f)), f);
+          const DetectedFrame detected =
+              detector->detect({recorded.recording.frame(static_cast<std::uint32_t>(f)), f});
           CorrectnessRow row;
           row.backend = drawsNothing ? "-" : backendName;
           row.scene = c.scene.label();
@@ -51,8 +51,7 @@ std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const 
           row.resolution = drawsNothing ? 0 : resolution;
           row.truthPairs = truth[i].size();
           row.foundPairs = detected.report.collidingPairs.size();
-          row.comparison = compareWithTruth(truth[i], detected.report.collidingPairs, detected.culled,
-                                            scene.objectCount());
+          row.comparison = compareWithTruth(truth[i], detected, scene.objectCount());
           rows.push_back(std::move(row));
         }
         if (drawsNothing) break;

@@ -77,10 +77,18 @@ std::vector<RatioMeasurement> measureFloors(BackendResources& resources, const s
     const RecordedScene& recorded = scenes.get(c.scene);
     (void)recordedPoses(recorded, c.frame, c.scene.label());
     for (const auto& name : strategies) {
-      FloorSetup setup(resources, backend, recorded, name, c.resolution, c.frame, registry);
-      if (setup.work().draws == 0 && setup.work().queries == 0) {
+      const auto noFloor = [&] {
         if (std::find(withoutFloor.begin(), withoutFloor.end(), name) == withoutFloor.end())
           withoutFloor.push_back(name);
+      };
+      // A CPU peer has no culling strategy, so no backend work.
+      if (registry.kind(name) == StrategyRegistry::Kind::CpuPeer) {
+        noFloor();
+        continue;
+      }
+      FloorSetup setup(resources, backend, recorded, name, c.resolution, c.frame, registry);
+      if (setup.work().draws == 0 && setup.work().queries == 0) {
+        noFloor();
         continue;
       }
       std::vector<TimedRound> rounds(static_cast<std::size_t>(std::max(c.rounds, 1)));

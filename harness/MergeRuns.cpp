@@ -57,7 +57,7 @@ MergeSummary mergeRuns(const std::filesystem::path& outDir,
     fp += r.falsePositives;
   }
   nlohmann::json meta;
-  meta["cdbench_version"] = "0.1.0";
+  meta["cdbench_version"] = CDBENCH_VERSION;  // CMake's project version
   meta["created_utc"] = utcTimestamp();
   meta["merged_from"] = nlohmann::json::array();
   for (const auto& d : runDirs) meta["merged_from"].push_back(d.string());

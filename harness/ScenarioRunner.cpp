@@ -17,7 +17,6 @@
 #include "harness/AtomicFile.h"
 #include "harness/BackendWarmUp.h"
 #include "harness/CellStore.h"
-#include "harness/FrameDetection.h"
 #include "harness/InterruptFlag.h"
 #include "harness/ProgressBar.h"
 #include "harness/RunOutputs.h"
@@ -246,11 +245,11 @@ RunSummary runScenario(const RunOptions& options) {
                        " repeat=" + std::to_string(cell.repeat) + " res=" +
                        std::to_string(cell.resolution));
     strategyOptions.resolution = cell.resolution;
-    std::unique_ptr<CullingStrategy> strategy;
+    std::unique_ptr<CollisionDetector> detector;
     {
       const ScopedSeconds timed(time.setupSeconds);
-      strategy = registry.create(cell.strategy, strategyOptions);
-      strategy->attach(*scene, backend);
+      detector = registry.createDetector(cell.strategy, strategyOptions, backend, *exact);
+      detector->attach(*scene);
       // Shader compilation and framebuffer allocation at this resolution are not CD time.
       warmUpBackend(backend, *scene, recording.frame(0), cell.resolution);
     }
@@ -258,8 +257,8 @@ RunSummary runScenario(const RunOptions& options) {
     std::vector<FrameRecord> rows;
     for (std::uint32_t f : measured) {
       const auto poses = recording.frame(f);
-      const DetectedFrame detected = detectFrame(*strategy, *exact, poses, static_cast<int>(f));
-      const CullingResult& culled = detected.culled;
+      const DetectedFrame detected = detector->detect({poses, static_cast<int>(f)});
+      const CullingCounters counters = detected.cullingCounters();
       const CollisionReport& report = detected.report;
       time.cdSeconds += detected.cdMs() / 1e3;
 
@@ -274,21 +273,20 @@ RunSummary runScenario(const RunOptions& options) {
       r.cullMs = detected.cullMs;
       r.exactMs = detected.exactMs;
       r.cdMs = detected.cdMs();
-      r.pcsSize = culled.counters.pcsSize;
-      r.sets = culled.counters.sets;
-      r.pcsTriangles = culled.counters.pcsTriangles;
+      r.pcsSize = counters.pcsSize;
+      r.sets = counters.sets;
+      r.pcsTriangles = counters.pcsTriangles;
       r.pairsTested = report.pairsTested;
       r.triangleTests = report.triangleTests;
       r.collidingPairs = report.collidingPairs.size();
-      r.queries = culled.counters.visibility.queries;
-      r.draws = culled.counters.visibility.draws;
-      r.trianglesDrawn = culled.counters.visibility.trianglesDrawn;
-      r.pixelsTested = culled.counters.visibility.pixelsTested;
-      r.pixelsWritten = culled.counters.visibility.pixelsWritten;
+      r.queries = counters.visibility.queries;
+      r.draws = counters.visibility.draws;
+      r.trianglesDrawn = counters.visibility.trianglesDrawn;
+      r.pixelsTested = counters.visibility.pixelsTested;
+      r.pixelsWritten = counters.visibility.pixelsWritten;
       if (truth) {
         const ScopedSeconds timed(time.truthSeconds);
-        const auto cmp =
-            compareWithTruth(truthPairs[f], report.collidingPairs, culled, scene->objectCount());
+        const auto cmp = compareWithTruth(truthPairs[f], detected, scene->objectCount());
         r.truthPairs = truthPairs[f].size();
         r.falseNegatives = cmp.falseNegatives;
         r.falsePositives = cmp.falsePositives;
@@ -333,7 +331,7 @@ RunSummary runScenario(const RunOptions& options) {
 
   const auto rows = store.load(plan);
   nlohmann::json meta;
-  meta["cdbench_version"] = "0.1.0";
+  meta["cdbench_version"] = CDBENCH_VERSION;  // CMake's project version
   meta["created_utc"] = utcTimestamp();
   meta["command_line"] = options.commandLine;
   meta["machine"] = shardMeta["machine"];

@@ -41,10 +41,11 @@ TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
 }
 
 TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
-                                 const std::vector<ObjectPair>& found, const CullingResult& culled,
-                                 std::size_t objectCount) {
-  TruthComparison c = compareWithTruth(truth, found, culled.sets, objectCount);
-  if (culled.decided) c.cullingMisses = c.falseNegatives;
+                                 const DetectedFrame& detected, std::size_t objectCount) {
+  const std::vector<ObjectPair>& found = detected.report.collidingPairs;
+  if (detected.culled) return compareWithTruth(truth, found, detected.culled->sets, objectCount);
+  TruthComparison c = compareWithTruth(truth, found, PotentiallyCollidingSets{}, objectCount);
+  c.cullingMisses = c.falseNegatives;
   return c;
 }
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "culling/CullingStrategy.h"
+#include "culling/CollisionDetector.h"
 #include "culling/PotentiallyCollidingSets.h"
 #include "culling/exact/ObjectPair.h"
 
@@ -22,11 +22,10 @@ struct TruthComparison {
                                                const PotentiallyCollidingSets& sets,
                                                std::size_t objectCount);
 
-// The same for a cull's result. A strategy that decided the pairs itself (a CPU peer) leaves no
-// sets, so every pair it misses is a culling miss too. `culled.decided` may have been moved from:
-// only whether it is set matters.
+// The same for a detector's answer on one frame. A detector that culls nothing (a CPU peer) leaves
+// no sets, so every pair it misses is a culling miss too.
 [[nodiscard]] TruthComparison compareWithTruth(const std::vector<ObjectPair>& truth,
-                                               const std::vector<ObjectPair>& found,
-                                               const CullingResult& culled, std::size_t objectCount);
+                                               const DetectedFrame& detected,
+                                               std::size_t objectCount);
 
 }  // namespace cdb

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "culling/peers/PeerReport.h"
 
 namespace cdb {
 
@@ -94,11 +93,11 @@ struct BulletPeer::Impl {
   std::vector<std::unique_ptr<btCollisionObject>> objects;
 };
 
-BulletPeer::BulletPeer(const StrategyOptions&) : impl_(std::make_unique<Impl>()) {}
+BulletPeer::BulletPeer(const StrategyOptions&) {}
 
 BulletPeer::~BulletPeer() = default;
 
-void BulletPeer::attach(const SceneGeometry& scene, VisibilityBackend&) {
+void BulletPeer::attach(const SceneGeometry& scene) {
   impl_ = std::make_unique<Impl>();
   Impl& s = *impl_;
   for (const Mesh& mesh : scene.meshes) s.meshes.push_back(buildShape(mesh));
@@ -115,10 +114,10 @@ void BulletPeer::attach(const SceneGeometry& scene, VisibilityBackend&) {
   }
 }
 
-CullingResult BulletPeer::cull(const FrameInput& frame) {
+CpuPeer::LibraryPairs BulletPeer::collide(std::span<const Pose> poses) {
   Impl& s = *impl_;
   for (ObjectId id = 0; id < s.objects.size(); ++id)
-    s.objects[id]->setWorldTransform(toBullet(frame.poses[id]));
+    s.objects[id]->setWorldTransform(toBullet(poses[id]));
   s.world.performDiscreteCollisionDetection();
 
   std::vector<ObjectPair> pairs;
@@ -131,7 +130,7 @@ CullingResult BulletPeer::cull(const FrameInput& frame) {
   }
   const auto tested =
       std::uint64_t(s.broadphase.getOverlappingPairCache()->getNumOverlappingPairs());
-  return peerResult(std::move(pairs), tested);
+  return {std::move(pairs), tested};
 }
 
 }  // namespace cdb

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "core/Errors.h"
-#include "culling/peers/PeerReport.h"
 
 namespace cdb {
 
@@ -66,11 +65,11 @@ struct FclPeer::Impl {
   FrameState state;
 };
 
-FclPeer::FclPeer(const StrategyOptions&) : impl_(std::make_unique<Impl>()) {}
+FclPeer::FclPeer(const StrategyOptions&) {}
 
 FclPeer::~FclPeer() = default;
 
-void FclPeer::attach(const SceneGeometry& scene, VisibilityBackend&) {
+void FclPeer::attach(const SceneGeometry& scene) {
   impl_ = std::make_unique<Impl>();
   Impl& s = *impl_;
   for (const Mesh& mesh : scene.meshes) s.models.push_back(buildModel(mesh));
@@ -85,10 +84,10 @@ void FclPeer::attach(const SceneGeometry& scene, VisibilityBackend&) {
   s.manager.setup();
 }
 
-CullingResult FclPeer::cull(const FrameInput& frame) {
+CpuPeer::LibraryPairs FclPeer::collide(std::span<const Pose> poses) {
   Impl& s = *impl_;
   for (ObjectId id = 0; id < s.objects.size(); ++id) {
-    const Pose& pose = frame.poses[id];
+    const Pose& pose = poses[id];
     s.objects[id]->setTransform(pose.rotation, pose.translation);
     s.objects[id]->computeAABB();  // setTransform leaves the world box stale
   }
@@ -96,7 +95,7 @@ CullingResult FclPeer::cull(const FrameInput& frame) {
   s.state.pairs.clear();
   s.state.pairsTested = 0;
   s.manager.collide(&s.state, &Impl::narrowPhase);
-  return peerResult(s.state.pairs, s.state.pairsTested);
+  return {s.state.pairs, s.state.pairsTested};
 }
 
 }  // namespace cdb

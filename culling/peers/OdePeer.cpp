@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "culling/peers/PeerReport.h"
 #include "scenes/OdeRuntime.h"
 
 namespace cdb {
@@ -80,11 +79,11 @@ OdePeer::OdePeer(const StrategyOptions&) {}
 
 OdePeer::~OdePeer() = default;
 
-void OdePeer::attach(const SceneGeometry& scene, VisibilityBackend&) {
+void OdePeer::attach(const SceneGeometry& scene) {
   impl_ = std::make_unique<Impl>(scene);
 }
 
-CullingResult OdePeer::cull(const FrameInput& frame) {
+CpuPeer::LibraryPairs OdePeer::collide(std::span<const Pose> poses) {
   Impl& s = *impl_;
   s.pairs.clear();
   s.pairsTested = 0;
@@ -93,7 +92,7 @@ CullingResult OdePeer::cull(const FrameInput& frame) {
     const auto guard = OdeRuntime::lock();
     dAllocateODEDataForThread(dAllocateMaskAll);  // this thread may not be the one that built it
     for (ObjectId id = 0; id < s.geoms.size(); ++id) {
-      const Pose& pose = frame.poses[id];
+      const Pose& pose = poses[id];
       const Eigen::Quaterniond& q = pose.rotation;
       const dQuaternion quaternion = {q.w(), q.x(), q.y(), q.z()};  // ODE orders w first
       dGeomSetPosition(s.geoms[id], pose.translation.x(), pose.translation.y(),
@@ -102,7 +101,7 @@ CullingResult OdePeer::cull(const FrameInput& frame) {
     }
     dSpaceCollide(s.space, &s, &Impl::nearCallback);
   }
-  return peerResult(s.pairs, s.pairsTested);
+  return {s.pairs, s.pairsTested};
 }
 
 }  // namespace cdb

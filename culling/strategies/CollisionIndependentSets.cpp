@@ -1,5 +1,7 @@
 #include "culling/strategies/CollisionIndependentSets.h"
 
+#include "culling/ViewAxis.h"
+
 // Algorithm 3.2's decisions, and why the sets it builds are safe, are in CisConstruction; this
 // draws whole objects for it, pass 2 testing only the objects the algorithm asks about.
 
@@ -16,22 +18,6 @@ void CollisionIndependentSets::attach(const SceneGeometry& scene, VisibilityBack
   for (std::size_t i = 0; i < allObjects_.size(); ++i) allObjects_[i] = static_cast<ObjectId>(i);
 }
 
-int CollisionIndependentSets::chooseAxis() const {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Vector3d sumSq = Eigen::Vector3d::Zero();
-  for (ObjectId o : allObjects_) {
-    const Eigen::Vector3d c = bounds_[o].center();
-    sum += c;
-    sumSq += c.cwiseProduct(c);
-  }
-  const double n = static_cast<double>(allObjects_.size());
-  const Eigen::Vector3d variance = sumSq / n - (sum / n).cwiseProduct(sum / n);
-  int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (variance[k] > variance[axis]) axis = k;
-  return axis;
-}
-
 CullingResult CollisionIndependentSets::cull(const FrameInput& frame) {
   const VisibilityCounters before = backend_->counters();
   CullingResult result;
@@ -41,7 +27,8 @@ CullingResult CollisionIndependentSets::cull(const FrameInput& frame) {
 
   backend_->setPoses(frame.poses);
   bounds_.update(frame.poses);
-  stats_.axis = config_.axis.value_or(chooseAxis());
+  stats_.axis = config_.axis.value_or(axisOfLargestSpread(
+      n, [&](std::size_t slot) { return bounds_[allObjects_[slot]].center(); }));
   SortedIntervals& sorted = sorted_[stats_.axis];
   stats_.sortExchanges = sorted.update(allObjects_, bounds_, Eigen::Vector3d::Unit(stats_.axis));
 

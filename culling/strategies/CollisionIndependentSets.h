@@ -46,8 +46,6 @@ class CollisionIndependentSets final : public CullingStrategy {
   [[nodiscard]] const FrameStats& lastFrame() const { return stats_; }
 
  private:
-  [[nodiscard]] int chooseAxis() const;
-
   StrategyOptions options_;
   CisOptions config_;
   const SceneGeometry* scene_ = nullptr;

@@ -4,6 +4,8 @@
 #include <limits>
 #include <tuple>
 
+#include "culling/ViewAxis.h"
+
 // Where this departs from Algorithm 3.2 run per set, and why:
 //  - Pass 2 queries every object of the set (but the first drawn), not only those fully visible
 //    in pass 1. Nodes are pruned when fully visible in both passes, and the members of pass-1
@@ -43,22 +45,6 @@ void HierarchicalCollisionIndependentSets::attach(const SceneGeometry& scene,
   frontier_.attach(scene, hierarchies_);
   bounds_.attach(scene);
   lists_.clear();
-}
-
-int HierarchicalCollisionIndependentSets::chooseAxis(std::span<const Pose> poses) const {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Vector3d sumSq = Eigen::Vector3d::Zero();
-  for (ObjectId o = 0; o < scene_->objectCount(); ++o) {
-    const Eigen::Vector3d c = poses[o].apply(frontier_.tree(o).nodes()[0].box.center);
-    sum += c;
-    sumSq += c.cwiseProduct(c);
-  }
-  const double n = static_cast<double>(scene_->objectCount());
-  const Eigen::Vector3d variance = sumSq / n - (sum / n).cwiseProduct(sum / n);
-  int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (variance[k] > variance[axis]) axis = k;
-  return axis;
 }
 
 SortedIntervals& HierarchicalCollisionIndependentSets::listFor(
@@ -222,7 +208,10 @@ CullingResult HierarchicalCollisionIndependentSets::cull(const FrameInput& frame
   backend_->setPoses(frame.poses);
   bounds_.update(frame.poses);
   frontier_.reset();
-  int axis = config_.firstAxis.value_or(chooseAxis(frame.poses));
+  const auto rootCentre = [&](std::size_t o) {
+    return frame.poses[o].apply(frontier_.tree(static_cast<ObjectId>(o)).nodes()[0].box.center);
+  };
+  int axis = config_.firstAxis.value_or(axisOfLargestSpread(scene_->objectCount(), rootCentre));
 
   std::vector<std::vector<ObjectId>> work(1);
   for (ObjectId o = 0; o < objectCount; ++o) work[0].push_back(o);

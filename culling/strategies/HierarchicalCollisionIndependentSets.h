@@ -82,7 +82,6 @@ class HierarchicalCollisionIndependentSets final : public CullingStrategy {
     std::uint64_t lastFrame = 0;
   };
 
-  [[nodiscard]] int chooseAxis(std::span<const Pose> poses) const;
   SortedIntervals& listFor(std::uint32_t level, int axis, const std::vector<ObjectId>& objects);
   void drawSet(SetRun& run, std::uint32_t level, int axis, std::span<const Pose> poses);
   // Splits the set from the fetched answers; appends the subsets (two members or more) to `out`.

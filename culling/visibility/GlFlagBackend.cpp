@@ -32,7 +32,6 @@ GlFlagBackend::~GlFlagBackend() {
 std::string GlFlagBackend::renderer() const { return context_->info().glRenderer; }
 
 void GlFlagBackend::setOptions(const VisibilityOptions& options) {
-  options_ = options;
   pipeline_.setConservative(options.conservative);
   pipeline_.setRawDepthOffset(options.rawDepthOffset);
 }

@@ -50,10 +50,6 @@ class GlFlagBackend final : public VisibilityBackend {
   [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
   void resetCounters() override { counters_ = {}; }
 
-  [[nodiscard]] const VisibilityOptions& options() const { return options_; }
-  // The GL layer underneath (tests read the depth buffer through it).
-  [[nodiscard]] GlVisibilityPipeline& pipeline() { return pipeline_; }
-
  private:
   // Draws of checked arguments; `item` is the first item of a test (ignored by writes).
   void drawRange(const MeshRange& range, DrawRole role, std::uint32_t item, bool itemPerTriangle);
@@ -75,7 +71,6 @@ class GlFlagBackend final : public VisibilityBackend {
   GlVisibilityPipeline pipeline_;
   GlItemFlags flags_;
   GlStreamBuffer listedTriangles_, boxMatrices_;
-  VisibilityOptions options_;
   VisibilityCounters counters_;
   // Scratch reused so that a frame allocates nothing.
   std::vector<std::uint32_t> listScratch_;

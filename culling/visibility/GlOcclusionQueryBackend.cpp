@@ -16,7 +16,6 @@ GlOcclusionQueryBackend::GlOcclusionQueryBackend(HeadlessGlContext& context,
 std::string GlOcclusionQueryBackend::renderer() const { return context_->info().glRenderer; }
 
 void GlOcclusionQueryBackend::setOptions(const VisibilityOptions& options) {
-  options_ = options;
   pipeline_.setConservative(options.conservative);
   pipeline_.setRawDepthOffset(options.rawDepthOffset);
 }

@@ -39,12 +39,9 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
   void resetCounters() override { counters_ = {}; }
 
-  [[nodiscard]] const VisibilityOptions& options() const { return options_; }
   // The largest frame-buffer side this GL renders at (GL_MAX_RENDERBUFFER_SIZE and
   // GL_MAX_VIEWPORT_DIMS), so a run can refuse a resolution before it simulates anything.
   [[nodiscard]] int maxResolution() const override { return pipeline_.maxResolution(); }
-  // The GL layer underneath (GlDrawFloor and tests read the depth buffer through it).
-  [[nodiscard]] GlVisibilityPipeline& pipeline() { return pipeline_; }
 
  private:
   // Draws of already checked arguments.
@@ -53,7 +50,6 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
 
   HeadlessGlContext* context_;
   GlVisibilityPipeline pipeline_;
-  VisibilityOptions options_;
   VisibilityCounters counters_;
   // Scratch for writeTriangles, reused so that a frame allocates nothing.
   std::vector<GlVisibilityPipeline::Run> runs_;

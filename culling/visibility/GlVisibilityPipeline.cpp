@@ -234,14 +234,4 @@ void GlVisibilityPipeline::drawRuns(const GlMeshSlot& slot, std::span<const Run>
   }
 }
 
-std::vector<float> GlVisibilityPipeline::readDepth() const {
-  std::vector<float> depth(static_cast<std::size_t>(targetResolution_) * targetResolution_);
-  if (depth.empty()) return depth;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.get());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, targetResolution_, targetResolution_, GL_DEPTH_COMPONENT, GL_FLOAT,
-               depth.data());
-  return depth;
-}
-
 }  // namespace cdb

@@ -137,9 +137,6 @@ class GlVisibilityPipeline {
   [[nodiscard]] std::size_t pendingQueries() const { return queries_.pending(); }
   void fetch(std::vector<std::uint8_t>& fullyVisible) { queries_.fetch(fullyVisible); }
 
-  // The depth buffer as stored, row by row from the bottom (for tests and debugging; it waits).
-  [[nodiscard]] std::vector<float> readDepth() const;
-
  private:
   void applyPassState();
   void applyRole(DrawRole role);

@@ -19,7 +19,7 @@ class ScriptedVisibilityOracle final : public VisibilityBackend {
   explicit ScriptedVisibilityOracle(Script script) : script_(std::move(script)) {}
 
   [[nodiscard]] std::string_view name() const override { return "scripted-oracle"; }
-  void setOptions(const VisibilityOptions& options) override { options_ = options; }
+  void setOptions(const VisibilityOptions&) override {}
   void attachScene(const SceneGeometry& scene) override { scene_ = &scene; }
   void setPoses(std::span<const Pose> poses) override { poses_ = poses; }
   void beginPass(const ViewSpec& view, DepthUse depth) override;
@@ -36,14 +36,12 @@ class ScriptedVisibilityOracle final : public VisibilityBackend {
   // Objects queried in pass `pass`, in order.
   [[nodiscard]] std::vector<ObjectId> queriedObjects(int pass) const;
   [[nodiscard]] std::span<const Pose> poses() const { return poses_; }
-  [[nodiscard]] const VisibilityOptions& options() const { return options_; }
 
  private:
   QueryIndex query(VisibilityCall call);
   void write(VisibilityCall call);
 
   Script script_;
-  VisibilityOptions options_;
   const SceneGeometry* scene_ = nullptr;
   std::span<const Pose> poses_;
   std::vector<VisibilityCall> log_;

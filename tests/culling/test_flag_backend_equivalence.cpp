@@ -186,8 +186,8 @@ std::vector<RecordedCase> recordedCases() {
   std::vector<RecordedCase> out;
   for (int f = 0; f < static_cast<int>(std::size(kFrames)); ++f)
     for (const auto& name : StrategyRegistry::builtin().names())
-      // The CPU peers decide their pairs themselves and draw nothing.
-      if (!StrategyRegistry::builtin().isCpuPeer(name))
+      // The CPU peers are detectors by themselves: no culling strategy to record.
+      if (StrategyRegistry::builtin().kind(name) != StrategyRegistry::Kind::CpuPeer)
         for (int resolution : {64, 256, 800})
           if (resolution < 800 || kFrames[f].scene.config != "env2.yaml")
             out.emplace_back(f, name, resolution);

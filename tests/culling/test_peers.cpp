@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "RandomScenes.h"
+#include "core/Errors.h"
 #include "culling/StrategyRegistry.h"
+#include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/ScriptedVisibilityOracle.h"
 #include "scenes/ProceduralMeshes.h"
@@ -16,28 +18,17 @@
 namespace cdb {
 namespace {
 
-std::vector<std::string> registeredPeers() {
-  std::vector<std::string> peers;
-  for (const auto& name : StrategyRegistry::builtin().names())
-    if (StrategyRegistry::builtin().isCpuPeer(name)) peers.push_back(name);
-  return peers;
-}
-
 // Pairs a peer decides on each frame of `scene`.
 std::vector<std::vector<ObjectPair>> peerPairs(const std::string& peer,
                                                const testing::RandomScene& scene) {
-  ScriptedVisibilityOracle unused([](const VisibilityCall&, std::span<const VisibilityCall>) {
-    ADD_FAILURE() << "a peer queried the visibility backend";
-    return true;
-  });
-  auto strategy = StrategyRegistry::builtin().create(peer, {});
-  strategy->attach(scene.scene, unused);
+  auto detector = StrategyRegistry::builtin().createPeer(peer, {});
+  detector->attach(scene.scene);
   std::vector<std::vector<ObjectPair>> out;
   for (std::size_t f = 0; f < scene.frames.size(); ++f) {
-    const CullingResult r = strategy->cull({scene.frames[f], int(f)});
-    EXPECT_TRUE(r.decided.has_value()) << peer;
-    EXPECT_TRUE(r.sets.empty()) << peer;
-    out.push_back(r.decided ? r.decided->collidingPairs : std::vector<ObjectPair>{});
+    const DetectedFrame d = detector->detect({scene.frames[f], int(f)});
+    EXPECT_FALSE(d.culled.has_value()) << peer;
+    EXPECT_EQ(d.exactMs, 0.0) << peer;
+    out.push_back(d.report.collidingPairs);
   }
   return out;
 }
@@ -122,8 +113,44 @@ TEST_P(PeerTest, RandomToriAgreeWithGroundTruth) {
   EXPECT_GT(truthPairs, 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Peers, PeerTest, ::testing::ValuesIn(registeredPeers()),
-                         [](const auto& param) { return param.param; });
+// Every entry makes a detector of its own name; only the CPU peers make it without a culling
+// strategy, and they never ask the backend they are offered.
+TEST(DetectorRegistry, PeersAreDetectorsWithoutACullingStrategy) {
+  const auto& registry = StrategyRegistry::builtin();
+  Pose side;
+  side.translation = {0.6, 0, 0};
+  const auto scene = torusPair(side);
+  ExactPhase exact(scene.scene);
+  ScriptedVisibilityOracle oracle(
+      [](const VisibilityCall&, std::span<const VisibilityCall>) { return false; });
+  oracle.attachScene(scene.scene);
+  std::size_t peers = 0;
+  for (const auto& name : registry.names()) {
+    const bool peer = registry.kind(name) == StrategyRegistry::Kind::CpuPeer;
+    peers += peer;
+    if (peer) {
+      EXPECT_THROW((void)registry.create(name, {}), InputError) << name;
+    } else {
+      EXPECT_THROW((void)registry.createPeer(name, {}), InputError) << name;
+    }
+    auto detector = registry.createDetector(name, {}, oracle, exact);
+    EXPECT_EQ(detector->name(), name);
+    detector->attach(scene.scene);
+    const std::size_t asked = oracle.log().size();
+    const DetectedFrame d = detector->detect({scene.frames[0], 0});
+    EXPECT_EQ(d.culled.has_value(), !peer) << name;
+    if (peer) {
+      EXPECT_EQ(oracle.log().size(), asked) << name;
+    }
+  }
+  EXPECT_EQ(peers, registry.names(StrategyRegistry::Kind::CpuPeer).size());
+  EXPECT_GT(peers, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Peers, PeerTest,
+    ::testing::ValuesIn(StrategyRegistry::builtin().names(StrategyRegistry::Kind::CpuPeer)),
+    [](const auto& param) { return param.param; });
 
 }  // namespace
 }  // namespace cdb

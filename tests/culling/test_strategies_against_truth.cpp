@@ -13,7 +13,6 @@
 #include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
-#include "harness/FrameDetection.h"
 #include "harness/TruthComparison.h"
 
 namespace cdb {
@@ -84,19 +83,19 @@ TEST_P(StrategyAgainstTruth, ConservativeModeLosesNoContact) {
 
   StrategyOptions options;
   options.resolution = resolution;
-  auto strategy = StrategyRegistry::builtin().create(name, options);
-  strategy->attach(scene->scene, backend);
   GroundTruth truth(scene->scene);
   ExactPhase exact(scene->scene);
+  auto detector = StrategyRegistry::builtin().createDetector(name, options, backend, exact);
+  detector->attach(scene->scene);
 
   std::size_t truthPairs = 0;
   for (std::size_t f = 0; f < scene->frames.size(); ++f) {
     const auto& poses = scene->frames[f];
     const auto expected = truth.compute(poses).collidingPairs;
     truthPairs += expected.size();
-    const DetectedFrame detected = detectFrame(*strategy, exact, poses, static_cast<int>(f));
+    const DetectedFrame detected = detector->detect({poses, static_cast<int>(f)});
     const auto& found = detected.report.collidingPairs;
-    const auto cmp = compareWithTruth(expected, found, detected.culled, scene->scene.objectCount());
+    const auto cmp = compareWithTruth(expected, detected, scene->scene.objectCount());
     EXPECT_EQ(cmp.cullingMisses, 0u) << "frame " << f;
     EXPECT_EQ(cmp.falseNegatives, 0u) << "frame " << f;
     EXPECT_EQ(found, expected) << "frame " << f;

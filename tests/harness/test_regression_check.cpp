@@ -29,13 +29,20 @@ using Wrap = std::function<std::unique_ptr<CullingStrategy>(std::unique_ptr<Cull
 StrategyRegistry registryWith(const std::string& target, Wrap wrap) {
   StrategyRegistry r;
   const auto& builtin = StrategyRegistry::builtin();
-  for (const auto& name : builtin.names())
+  for (const auto& name : builtin.names()) {
+    if (builtin.kind(name) == StrategyRegistry::Kind::CpuPeer) {
+      r.addPeer(name, builtin.description(name), [name](const StrategyOptions& o) {
+        return StrategyRegistry::builtin().createPeer(name, o);
+      });
+      continue;
+    }
     r.add(name, builtin.description(name),
           [name, target, wrap](const StrategyOptions& o) -> std::unique_ptr<CullingStrategy> {
             auto s = StrategyRegistry::builtin().create(name, o);
             return name == target ? wrap(std::move(s)) : std::move(s);
           },
           builtin.kind(name));
+  }
   return r;
 }
 

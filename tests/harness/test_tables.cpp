@@ -95,19 +95,20 @@ TEST(TruthComparison, ASetThatListsItsPairsHoldsOnlyThosePairsTogether) {
   EXPECT_EQ(c.cullingMisses, 1u);  // {0, 1}: both in the first set, but not listed there
 }
 
-TEST(TruthComparison, AStrategyThatDecidesThePairsMissesInCullingWhatItMisses) {
+TEST(TruthComparison, ADetectorThatCullsNothingMissesInCullingWhatItMisses) {
   const std::vector<ObjectPair> truth = {{0, 1}, {2, 3}, {4, 5}};
-  CullingResult peer;
-  peer.decided = CollisionReport{};
-  peer.decided->collidingPairs = {{0, 1}};
-  const auto c = compareWithTruth(truth, peer.decided->collidingPairs, peer, 6);
+  DetectedFrame peer;
+  peer.report.collidingPairs = {{0, 1}};
+  const auto c = compareWithTruth(truth, peer, 6);
   EXPECT_EQ(c.falseNegatives, 2u);
   EXPECT_EQ(c.cullingMisses, 2u);  // no sets: without the rule, every truth pair would count
 
-  CullingResult imageBased;
-  imageBased.sets.resize(1);
-  imageBased.sets[0].members = {{0, {}}, {1, {}}, {2, {}}, {3, {}}, {4, {}}, {5, {}}};
-  const auto d = compareWithTruth(truth, {{0, 1}}, imageBased, 6);
+  DetectedFrame imageBased;
+  imageBased.report.collidingPairs = {{0, 1}};
+  imageBased.culled.emplace();
+  imageBased.culled->sets.resize(1);
+  imageBased.culled->sets[0].members = {{0, {}}, {1, {}}, {2, {}}, {3, {}}, {4, {}}, {5, {}}};
+  const auto d = compareWithTruth(truth, imageBased, 6);
   EXPECT_EQ(d.falseNegatives, 2u);
   EXPECT_EQ(d.cullingMisses, 0u);  // every pair was left together for the exact phase
 }
