@@ -221,7 +221,7 @@ TEST_P(TriangleTriangleRandom, AgreesNearAPlaneWhereRoundingDecides) {
 
 // Named by seed (not by index), so that a gtest filter and ctest (which shows the value) agree.
 INSTANTIATE_TEST_SUITE_P(Seeds, TriangleTriangleRandom, ::testing::Values(1u, 2u, 3u, 42u),
-                         [](const auto& info) { return std::to_string(info.param); });
+                         [](const auto& param) { return std::to_string(param.param); });
 
 TEST(OrientationPredicates, FilterAgreesWithExactOnRandomAndDegenerateInput) {
   std::mt19937_64 rng(7);

@@ -135,7 +135,7 @@ TEST_P(BadCommandLine, ExitsTwoWithOneLine) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Env3, BadCommandLine, ::testing::ValuesIn(kBadArguments),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace
 }  // namespace cdb::test

@@ -155,7 +155,7 @@ TEST_P(BadAssetFile, ExitsTwoWithOneLine) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Assets, BadAssetFile, ::testing::ValuesIn(kBadAssets),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& param) { return std::string(param.param.name); });
 
 // Meshes of millions of triangles are accepted up to mesh.max_triangles (8 M by default, see
 // configs/README.md) and refused above it; the check is the same at any limit, so it is shown on
