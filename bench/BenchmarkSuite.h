@@ -8,6 +8,8 @@
 //   exact/<env>/ours_sets                     the exact phase on the sets `ours` leaves (800)
 //   exact/<env>/all_pairs_sets                   the exact phase on one set of every object
 //   bvh_build/<mesh>/<env>                    one OBB tree build under the env's tree options
+//   truth/<env>                               the ground truth on the frame
+//   dynamics/<env>                            one frame of the env's rigid-body simulation
 //
 // for env1, env2, env3 (RecordedFrames.h says which frame), every visibility backend that starts
 // here (`cdbench backends`) and r = 256, 800; each file's head says what its benchmarks measure. Times are milliseconds per iteration; counters are per
@@ -67,5 +69,6 @@ void registerCullBenchmarks(RecordedFrames& frames);
 void registerFloorBenchmarks(RecordedFrames& frames);
 void registerExactPhaseBenchmarks(RecordedFrames& frames);
 void registerBvhBuildBenchmarks(RecordedFrames& frames);
+void registerReferenceBenchmarks(RecordedFrames& frames);
 
 }  // namespace cdb::bench

@@ -91,6 +91,7 @@ int main(int argc, char** argv) {
 
     bench::registerBvhBuildBenchmarks(frames);
     bench::registerExactPhaseBenchmarks(frames);
+    bench::registerReferenceBenchmarks(frames);
     bench::registerCullBenchmarks(frames);
     bench::registerFloorBenchmarks(frames);
     benchmark::RunSpecifiedBenchmarks();

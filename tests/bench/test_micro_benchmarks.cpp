@@ -31,7 +31,7 @@ TEST(MicroBenchmarks, CheapSelectionWritesJsonWithCounters) {
   const auto out = scratchFile("cheap.json");
   const std::string filter =
       "^(bvh_build/torus/env1|exact/env3/ours_sets|cull/env3/ours/[a-z-]+/res:256/manual_time|"
-      "floor/env3/ours/[a-z-]+/res:256/real_time)$";
+      "floor/env3/ours/[a-z-]+/res:256/real_time|truth/env3|dynamics/env3)$";
   const auto r = runBench(
       "--objects env3=20 --frame env3=30 --benchmark_min_time=0.05 "
       "--benchmark_filter='" +
@@ -81,7 +81,18 @@ TEST(MicroBenchmarks, CheapSelectionWritesJsonWithCounters) {
     EXPECT_EQ(floor["triangles"].get<double>(), cull["triangles"].get<double>()) << name;
     EXPECT_GT(floor["real_time"].get<double>(), 0.0) << name;
   }
-  ASSERT_EQ(byName.size(), 2u + 2u * culls) << json.dump(1);
+  ASSERT_EQ(byName.size(), 4u + 2u * culls) << json.dump(1);
+
+  // The ground truth finds what every cull followed by the exact phase found.
+  const auto& truth = byName.at("truth/env3");
+  for (const auto& [name, cull] : byName)
+    if (name.starts_with("cull/"))
+      EXPECT_EQ(truth["colliding_pairs"].get<double>(), cull["colliding_pairs"].get<double>())
+          << name;
+
+  const auto& dynamics = byName.at("dynamics/env3");
+  EXPECT_GT(dynamics["bodies"].get<double>(), 0.0);
+  EXPECT_GE(dynamics["steps_per_frame"].get<double>(), 1.0);
 
   const auto& exact = byName.at("exact/env3/ours_sets");
   for (const char* counter : {"pairs_tested", "triangle_tests", "colliding_pairs", "sets"})

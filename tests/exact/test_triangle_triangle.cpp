@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 
 #include "ExactReference.h"
 #include "culling/exact/OrientationPredicates.h"
@@ -218,7 +219,9 @@ TEST_P(TriangleTriangleRandom, AgreesNearAPlaneWhereRoundingDecides) {
   RecordProperty("roundedSignWrong", roundedWrong);
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeds, TriangleTriangleRandom, ::testing::Values(1u, 2u, 3u, 42u));
+// Named by seed (not by index), so that a gtest filter and ctest (which shows the value) agree.
+INSTANTIATE_TEST_SUITE_P(Seeds, TriangleTriangleRandom, ::testing::Values(1u, 2u, 3u, 42u),
+                         [](const auto& param) { return std::to_string(param.param); });
 
 TEST(OrientationPredicates, FilterAgreesWithExactOnRandomAndDegenerateInput) {
   std::mt19937_64 rng(7);

@@ -89,7 +89,7 @@ inline void expectNoResultFiles(const std::filesystem::path& out) {
 
 // Exit code `code`, one line on stderr holding every string of `mentions`, no result files.
 inline void expectCleanFailure(const ProcessResult& r, int code, const std::filesystem::path& out,
-                               std::initializer_list<std::string_view> mentions) {
+                               const std::vector<std::string>& mentions) {
   // In the XML report (--gtest_output=xml), so the messages can be reviewed in one place.
   ::testing::Test::RecordProperty("exit_code", r.exitCode);
   ::testing::Test::RecordProperty("stderr", r.stdErr);
@@ -102,7 +102,7 @@ inline void expectCleanFailure(const ProcessResult& r, int code, const std::file
   if (!r.stdErr.empty()) {
     EXPECT_EQ(r.stdErr.back(), '\n') << r.stdErr;
   }
-  for (std::string_view m : mentions)
+  for (const std::string& m : mentions)
     EXPECT_NE(r.stdErr.find(m), std::string::npos) << "'" << m << "' not in: " << r.stdErr;
   expectNoResultFiles(out);
 }
@@ -115,7 +115,7 @@ inline const std::string kEnv3 = kConfigDir + "env3.yaml";
 // on which others are registered; `extra` may name others (an option is given once).
 inline std::vector<std::string> smallRun(const std::string& config,
                                          const std::filesystem::path& out,
-                                         std::initializer_list<std::string> extra = {}) {
+                                         const std::vector<std::string>& extra = {}) {
   std::vector<std::string> args = {"run", config,    "--frames", "2",         "--repeats",
                                    "1",   "--quiet", "--out",    out.string()};
   if (std::find(extra.begin(), extra.end(), "--strategies") == extra.end())

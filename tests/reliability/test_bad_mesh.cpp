@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "tests/reliability/CdbenchProcess.h"
 
@@ -71,31 +72,16 @@ TEST_F(BadMesh, Unreadable) {
   expectCleanFailure(r, 2, out(), {"locked.obj"});
 }
 
-TEST_F(BadMesh, Empty) {
-  writeAsset("empty.obj", "");
-  const auto r = run("empty");
-  expectCleanFailure(r, 2, out(), {"empty.obj", "no triangles", "empty"});
-}
+// A bad asset file: its name, its bytes, and what the one line must mention.
+struct BadAsset {
+  const char* name;  // the test's name
+  std::string file;  // under the asset folder; the config names it by its stem
+  std::string bytes;
+  std::vector<std::string> mentions;
+};
 
-TEST_F(BadMesh, PointsAndLinesOnly) {
-  writeAsset("wire.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1\np 2\nl 1 2\nl 2 3\n");
-  const auto r = run("wire");
-  expectCleanFailure(r, 2, out(), {"wire.obj", "no triangles"});
-}
-
-TEST_F(BadMesh, OnlyDegenerateTriangles) {
-  writeAsset("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n");
-  const auto r = run("flat");
-  expectCleanFailure(r, 2, out(), {"flat.obj", "no triangles", "degenerate"});
-}
-
-TEST_F(BadMesh, NanCoordinate) {
-  writeAsset("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
-  const auto r = run("nan");
-  expectCleanFailure(r, 2, out(), {"nan.obj", "expected finite coordinates"});
-}
-
-TEST_F(BadMesh, InfiniteCoordinateInBinaryPly) {
+// A binary PLY of three vertices and one face, `inf` in one coordinate.
+std::string plyWithAnInfiniteCoordinate() {
   std::string ply =
       "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
       "property float y\nproperty float z\nelement face 1\n"
@@ -107,41 +93,11 @@ TEST_F(BadMesh, InfiniteCoordinateInBinaryPly) {
   const std::int32_t f[3] = {0, 1, 2};
   ply.append(reinterpret_cast<const char*>(&n), 1);
   ply.append(reinterpret_cast<const char*>(f), sizeof f);
-  writeAsset("inf.ply", ply);
-  const auto r = run("inf");
-  expectCleanFailure(r, 2, out(), {"inf.ply", "expected finite coordinates"});
-}
-
-TEST_F(BadMesh, IndexOutOfRange) {
-  writeAsset("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-  const auto r = run("index");
-  expectCleanFailure(r, 2, out(), {"index.obj"});
-}
-
-TEST_F(BadMesh, NotAMesh) {
-  writeAsset("text.obj", "this is not a mesh\n\x01\x02\x03");
-  const auto r = run("text");
-  expectCleanFailure(r, 2, out(), {"text.obj"});
-}
-
-TEST_F(BadMesh, TruncatedBinaryPly) {
-  writeAsset("cut.ply",
-             "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
-             "property float y\nproperty float z\nelement face 1\n"
-             "property list uchar int vertex_indices\nend_header\n\x01\x02");
-  const auto r = run("cut");
-  expectCleanFailure(r, 2, out(), {"cut.ply"});
-}
-
-// A PLY cut inside its header: assimp alone would loop for ever on it.
-TEST_F(BadMesh, PlyHeaderCutShort) {
-  writeAsset("header.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n");
-  const auto r = run("header");
-  expectCleanFailure(r, 2, out(), {"header.ply", "end_header"});
+  return ply;
 }
 
 // A list length in a binary PLY that the file cannot hold: assimp alone would allocate gigabytes.
-TEST_F(BadMesh, PlyCountBeyondTheFile) {
+std::string plyWithACountBeyondTheFile() {
   std::string ply =
       "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
       "property float y\nproperty float z\nelement face 1\n"
@@ -149,10 +105,57 @@ TEST_F(BadMesh, PlyCountBeyondTheFile) {
   ply += std::string(36, '\0');
   ply += std::string("\xff\xff\xff\x7f", 4);  // 2^31 - 1 indices announced
   ply += std::string(12, '\0');
-  writeAsset("huge.ply", ply);
-  const auto r = run("huge");
-  expectCleanFailure(r, 2, out(), {"huge.ply", "PLY element 'face'", "does not fit"});
+  return ply;
 }
+
+const BadAsset kBadAssets[] = {
+    {"Empty", "empty.obj", "", {"empty.obj", "no triangles", "empty"}},
+    {"PointsAndLinesOnly",
+     "wire.obj",
+     "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1\np 2\nl 1 2\nl 2 3\n",
+     {"wire.obj", "no triangles"}},
+    {"OnlyDegenerateTriangles",
+     "flat.obj",
+     "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n",
+     {"flat.obj", "no triangles", "degenerate"}},
+    {"NanCoordinate",
+     "nan.obj",
+     "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n",
+     {"nan.obj", "expected finite coordinates"}},
+    {"InfiniteCoordinateInBinaryPly",
+     "inf.ply",
+     plyWithAnInfiniteCoordinate(),
+     {"inf.ply", "expected finite coordinates"}},
+    {"IndexOutOfRange", "index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", {"index.obj"}},
+    {"NotAMesh", "text.obj", "this is not a mesh\n\x01\x02\x03", {"text.obj"}},
+    {"TruncatedBinaryPly",
+     "cut.ply",
+     "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+     "property float y\nproperty float z\nelement face 1\n"
+     "property list uchar int vertex_indices\nend_header\n\x01\x02",
+     {"cut.ply"}},
+    // A PLY cut inside its header: assimp alone would loop for ever on it.
+    {"PlyHeaderCutShort",
+     "header.ply",
+     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n",
+     {"header.ply", "end_header"}},
+    {"PlyCountBeyondTheFile",
+     "huge.ply",
+     plyWithACountBeyondTheFile(),
+     {"huge.ply", "PLY element 'face'", "does not fit"}},
+};
+
+class BadAssetFile : public BadMesh, public ::testing::WithParamInterface<BadAsset> {};
+
+TEST_P(BadAssetFile, ExitsTwoWithOneLine) {
+  const BadAsset& bad = GetParam();
+  writeAsset(bad.file, bad.bytes);
+  const auto r = run(std::filesystem::path(bad.file).stem().string());
+  expectCleanFailure(r, 2, out(), bad.mentions);
+}
+
+INSTANTIATE_TEST_SUITE_P(Assets, BadAssetFile, ::testing::ValuesIn(kBadAssets),
+                         [](const auto& param) { return std::string(param.param.name); });
 
 // Meshes of millions of triangles are accepted up to mesh.max_triangles (8 M by default, see
 // configs/README.md) and refused above it; the check is the same at any limit, so it is shown on

@@ -335,6 +335,18 @@ TEST_F(ConfigErrors, NeitherPosesNorPlacement) {
               "exactly one, got neither");
 }
 
+TEST_F(ConfigErrors, BothPosesAndPlacement) {
+  expectError(
+      "environment: t\nbodies:\n  - name: a\n    mesh: {kind: torus}\n    poses: [{}]\n"
+      "    placement: {region_min: [-5, -5, -5], region_max: [5, 5, 5]}\n",
+      6, "bodies[0].placement", "exactly one, got both");
+}
+
+TEST_F(ConfigErrors, WrongTypeMapForBodies) {
+  expectError("environment: t\nbodies: {name: a}\n", 2, "bodies",
+              "a non-empty list of body groups, got a map");
+}
+
 TEST_F(ConfigErrors, MissingFile) {
   const auto file = dir_.path() / "absent.yaml";
   try {
@@ -369,6 +381,19 @@ TEST_F(ConfigErrors, MalformedYamlGivesTheParsersMessageAndLine) {
     EXPECT_EQ(message.rfind(file.string() + ":", 0), 0u) << message;
     EXPECT_NE(message.find("expected valid YAML, got "), std::string::npos) << message;
     EXPECT_NE(message.find("(column "), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+TEST_F(ConfigErrors, TabIndentationIsMalformedYaml) {
+  const auto file = dir_.write("tabs.yaml", "environment: t\nbodies:\n\t- name: a\n");
+  try {
+    (void)loadScenarioConfig(file);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(file.string() + ":", 0), 0u) << message;
+    EXPECT_NE(message.find("expected valid YAML, got "), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
 }

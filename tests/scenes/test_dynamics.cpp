@@ -1,11 +1,8 @@
 // Rigid-body dynamics: determinism, contact (resting, stacking, the closed cube), fixed bodies,
 // poses through the centre-of-mass offset, mass fall-back, and instability reporting.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <ctime>
 #include <functional>
 #include <string>
 #include <vector>
@@ -396,69 +393,6 @@ TEST(DynamicsContactPicker, KeepsTheDeepestAndSpreadsTheRest) {
   const auto three = picker.pick(contacts, 6, 3);
   EXPECT_EQ(std::vector<std::size_t>(three.begin(), three.end()), (std::vector<std::size_t>{1, 4, 5}));
   EXPECT_EQ(picker.pick(contacts, 4, 8).size(), 4u);
-}
-
-// Per-frame wall time of the two reference loads, with the dynamics of configs/env1.yaml and
-// configs/env3.yaml; run with --gtest_also_run_disabled_tests.
-struct FrameTime {
-  double wallMs = 0;
-  double cpuMs = 0;  // this thread's CPU time: what the wall time would be on an idle machine
-};
-
-double threadCpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
-
-FrameTime timePerFrame(const ScenarioConfig& config, int frames) {
-  const SceneGeometry scene = sceneFor(config);
-  RigidBodySimulation simulation(config, scene, 1);
-  const auto start = std::chrono::steady_clock::now();
-  const double cpuStart = threadCpuMs();
-  for (int f = 0; f < frames; ++f) simulation.stepFrame();
-  const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
-  return {elapsed.count() / frames, (threadCpuMs() - cpuStart) / frames};
-}
-
-TEST(RigidBodyDynamics, DISABLED_FrameTimes) {
-  // env1: 50 tori dropped into a trough of two 8 x 8 planes at 30 degrees.
-  ScenarioConfig trough;
-  trough.dynamics.timeStep = 0.005;
-  trough.dynamics.stepsPerFrame = 4;
-  trough.dynamics.frames = 400;
-  trough.dynamics.friction = 0.4;
-  trough.dynamics.restitution = 0.1;
-  trough.dynamics.angularDamping = 0.002;
-  BodyGroup planes = floorGroup();
-  planes.name = "planes";
-  planes.count = 2;
-  planes.poses = {at(-3.5141016, 2.0, 0.0, {0, 0, -30}), at(3.5141016, 2.0, 0.0, {0, 0, 30})};
-  BodyGroup tori = torusGroup("tori", 50);
-  RandomPlacement drop;
-  drop.regionMin = {-4.0, 3.5, -2.5};
-  drop.regionMax = {4.0, 10.0, 2.5};
-  drop.minGap = 0.05;
-  tori.placement = drop;
-  trough.bodies = {planes, tori};
-
-  // env3: 200 tori in a cube of side 11 without gravity.
-  ScenarioConfig cube = cubeScenario(200, 5.5);
-  cube.dynamics.timeStep = 0.005;
-  cube.dynamics.stepsPerFrame = 4;
-  cube.dynamics.frames = 300;
-  cube.dynamics.friction = 0.3;
-  cube.dynamics.restitution = 0.8;
-  cube.bodies[0].placement->regionMin = {-4.75, -4.75, -4.75};
-  cube.bodies[0].placement->regionMax = {4.75, 4.75, 4.75};
-  cube.bodies[0].placement->minGap = 0.05;
-
-  for (const ScenarioConfig* config : {&trough, &cube}) {
-    const FrameTime t = timePerFrame(*config, config->dynamics.frames);
-    std::printf("%zu bodies, %d frames of %d steps: %.2f ms/frame wall, %.2f ms/frame CPU\n",
-                sceneFor(*config).objectCount(), config->dynamics.frames,
-                config->dynamics.stepsPerFrame, t.wallMs, t.cpuMs);
-  }
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
@@ -264,7 +265,9 @@ TEST_P(CpuRasteriserProperty, CoversEveryTouchedPixelWithSafeDepths) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Resolutions, CpuRasteriserProperty, testing::Values(64, 256, 800));
+// Named by resolution (not by index), so that a gtest filter and ctest (which shows the value) agree.
+INSTANTIATE_TEST_SUITE_P(Resolutions, CpuRasteriserProperty, testing::Values(64, 256, 800),
+                         [](const auto& param) { return std::to_string(param.param); });
 
 }  // namespace
 }  // namespace cdb

@@ -39,17 +39,32 @@ TEST(HeadlessGlContext, OpensSurfaceless) {
   expectUsable(context);
 }
 
-TEST(HeadlessGlContext, DevicePlatformOpensOrSaysWhy) {
-  // Mesa lists its software rasteriser as an EGL device, so this usually opens; where it does not,
-  // the error is one line with a hint.
+TEST(HeadlessGlContext, DevicePlatformOpensTheDeviceAutoFindsOrSaysWhy) {
+  // Auto tries the hardware EGL devices first, best first, as the device platform does; the device
+  // platform then also tries Mesa's software device. So where auto lands on a device, the device
+  // platform opens that same renderer; where it does not (no GPU), the device platform opens a
+  // software renderer or fails with a one-line RunError that names the platform.
+  const GlInfo automatic = HeadlessGlContext(GlPlatform::Auto).info();
+  std::string renderer, failure;
   try {
     HeadlessGlContext context(GlPlatform::Device);
     EXPECT_EQ(context.info().platform, "device");
     expectUsable(context);
+    renderer = context.info().glRenderer;
   } catch (const RunError& e) {
-    const std::string what = e.what();
-    std::cout << "[ GL      ] device platform: " << what << "\n";
-    EXPECT_EQ(what.find('\n'), std::string::npos);
+    failure = e.what();
+  }
+  if (automatic.platform == "device") {
+    EXPECT_EQ(failure, "") << "auto opened a device, the device platform did not";
+    EXPECT_EQ(renderer, automatic.glRenderer);
+  } else if (failure.empty()) {
+    const bool software = renderer.find("llvmpipe") != std::string::npos ||
+                          renderer.find("softpipe") != std::string::npos;
+    EXPECT_TRUE(software) << "auto found no hardware device, yet the device platform opened "
+                          << renderer;
+  } else {
+    EXPECT_EQ(failure.find('\n'), std::string::npos) << failure;
+    EXPECT_NE(failure.find("device"), std::string::npos) << failure;
   }
 }
 
