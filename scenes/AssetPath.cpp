@@ -21,8 +21,9 @@ std::string joined(const std::vector<std::string>& items) {
 }  // namespace
 
 std::filesystem::path repositoryAssetDir() {
-  // This file is scenes/AssetPath.cpp in the repository; the build passes its absolute path.
-  return std::filesystem::path(__FILE__).parent_path().parent_path() / "assets";
+  // The build names the repository (not __FILE__: a compiler cache or a relative build may give
+  // this file a path relative to wherever it compiled).
+  return std::filesystem::path(CDBENCH_SOURCE_DIR) / "assets";
 }
 
 std::vector<std::string> assetSearchPath(const std::vector<std::string>& cliDirs) {
