@@ -17,6 +17,7 @@
 #include "harness/AtomicFile.h"
 #include "harness/BackendWarmUp.h"
 #include "harness/CellStore.h"
+#include "harness/CullingSpecJson.h"
 #include "harness/InterruptFlag.h"
 #include "harness/ProgressBar.h"
 #include "harness/RunOutputs.h"
@@ -351,6 +352,7 @@ RunSummary runScenario(const RunOptions& options) {
                     {"conservative", config.culling.visibility.conservative},
                     {"visibility", config.culling.visibility.backend},
                     {"threads", config.culling.visibility.threads},
+                    {"culling", toJson(config.culling)},
                     {"ground_truth", options.groundTruth},
                     {"text", configText}};
   std::uint64_t fn = 0, fp = 0, truthPairsTotal = 0;
