@@ -320,6 +320,7 @@ RunSummary runScenario(const RunOptions& options) {
                                                   config.culling.visibility.backend)},
                              {"renderer", backend.renderer()},
                              {"threads", config.culling.visibility.threads}};
+  shardMeta["culling"] = toJson(config.culling);
   // GL is opened only by backends that need it; a run on the CPU backend records none.
   if (const HeadlessGlContext* gl = resources.openedGl()) shardMeta["gl"] = toJson(gl->info());
   shardMeta["wall_time"] = time.toJson();
@@ -352,7 +353,7 @@ RunSummary runScenario(const RunOptions& options) {
                     {"conservative", config.culling.visibility.conservative},
                     {"visibility", config.culling.visibility.backend},
                     {"threads", config.culling.visibility.threads},
-                    {"culling", toJson(config.culling)},
+                    {"culling", shardMeta["culling"]},
                     {"ground_truth", options.groundTruth},
                     {"text", configText}};
   std::uint64_t fn = 0, fp = 0, truthPairsTotal = 0;

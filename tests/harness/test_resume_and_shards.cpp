@@ -16,6 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "harness/FrameCsv.h"
 
 namespace fs = std::filesystem;
@@ -157,6 +159,11 @@ TEST(Shards, GnuParallelShardsMergedEqualTheUnshardedRun) {
             0);
   EXPECT_EQ(answers(merged / "frames.csv"), answers(whole / "frames.csv"));
   for (const char* f : {"tables.csv", "tables.md", "meta.json"}) EXPECT_TRUE(fs::exists(merged / f)) << f;
+  // The merged meta.json records the culling options in effect, as one run's does.
+  std::ifstream mergedMeta(merged / "meta.json"), wholeMeta(whole / "meta.json");
+  const auto mergedCulling = nlohmann::json::parse(mergedMeta)["config"]["culling"];
+  EXPECT_TRUE(mergedCulling.is_object());
+  EXPECT_EQ(mergedCulling, nlohmann::json::parse(wholeMeta)["config"]["culling"]);
 
   // Two shards only: the merge names what is missing and writes nothing.
   const auto partial = base / "partial";
