@@ -8,6 +8,17 @@
 
 namespace cdb {
 
+nlohmann::json frameTotals(const std::vector<FrameRecord>& rows) {
+  std::uint64_t truthPairs = 0, falseNegatives = 0, falsePositives = 0;
+  for (const auto& r : rows) {
+    truthPairs += r.truthPairs;
+    falseNegatives += r.falseNegatives;
+    falsePositives += r.falsePositives;
+  }
+  return {{"frame_rows", rows.size()}, {"truth_pairs", truthPairs},
+          {"false_negatives", falseNegatives}, {"false_positives", falsePositives}};
+}
+
 void writeRunOutputs(const std::filesystem::path& dir, const std::vector<FrameRecord>& rows,
                      const nlohmann::json& meta) {
   std::ostringstream csv;

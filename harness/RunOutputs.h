@@ -10,6 +10,9 @@
 
 namespace cdb {
 
+// meta.json's summary of the frames: frame_rows, truth_pairs, false_negatives, false_positives.
+[[nodiscard]] nlohmann::json frameTotals(const std::vector<FrameRecord>& rows);
+
 void writeRunOutputs(const std::filesystem::path& dir, const std::vector<FrameRecord>& rows,
                      const nlohmann::json& meta);
 
