@@ -1,5 +1,6 @@
 #pragma once
-// frames.csv: one FrameRecord per line, with a header. Read back for merging and tables.
+// frames.csv: one FrameRecord per line, with a header, columns as kFrameColumns lists them. Read
+// back for merging and tables.
 #include <filesystem>
 #include <iosfwd>
 #include <vector>

@@ -4,7 +4,6 @@
 #include <fstream>
 
 #include "harness/CdTimeTables.h"
-#include "harness/FrameCsv.h"
 #include "harness/TruthComparison.h"
 
 namespace cdb {
@@ -39,36 +38,6 @@ TEST(CdTimeTables, AverageAndMaximumPerStrategyAndColumn) {
   EXPECT_NE(md.find("| strategy | 50 | 75 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| cullide | 2.0000 | 5.0000 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| ours | 0.5000 |  |"), std::string::npos) << md;
-}
-
-TEST(FrameCsv, RoundTripsEveryColumn) {
-  FrameRecord r = row("cullide", 256, 12, 4.25);
-  r.repeat = 3;
-  r.frame = 17;
-  r.cullMs = 4.0;
-  r.exactMs = 0.25;
-  r.pcsSize = 5;
-  r.queries = 1234;
-  r.draws = 99;
-  r.trianglesDrawn = 77777;
-  r.falseNegatives = 1;
-  const auto file = std::filesystem::temp_directory_path() / "cdbench_frames_roundtrip.csv";
-  {
-    std::ofstream out(file);
-    writeFrameCsvHeader(out);
-    writeFrameCsvRow(out, r);
-  }
-  const auto rows = readFrameCsv(file);
-  ASSERT_EQ(rows.size(), 1u);
-  EXPECT_EQ(rows[0].strategy, "cullide");
-  EXPECT_EQ(rows[0].resolution, 256);
-  EXPECT_EQ(rows[0].repeat, 3);
-  EXPECT_EQ(rows[0].frame, 17);
-  EXPECT_DOUBLE_EQ(rows[0].cdMs, 4.25);
-  EXPECT_EQ(rows[0].queries, 1234u);
-  EXPECT_EQ(rows[0].trianglesDrawn, 77777u);
-  EXPECT_EQ(rows[0].falseNegatives, 1u);
-  std::filesystem::remove(file);
 }
 
 TEST(TruthComparison, CountsMissesSplitsAndExtras) {
