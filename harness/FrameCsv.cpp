@@ -79,4 +79,13 @@ std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file) {
   return rows;
 }
 
+void writeFrameColumnsCsv(std::ostream& out) {
+  out << "column,kind,description\n";
+  for (const auto& column : kFrameColumns) {
+    std::string quoted;
+    for (char c : column.description) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    out << column.name << ',' << kindOf(column.field) << ",\"" << quoted << "\"\n";
+  }
+}
+
 }  // namespace cdb

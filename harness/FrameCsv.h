@@ -14,4 +14,7 @@ void writeFrameCsvRow(std::ostream& out, const FrameRecord& r);
 // Throws InputError naming the file and line for a malformed file.
 [[nodiscard]] std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file);
 
+// `cdbench frame-columns`: column,kind,description, one line per column of frames.csv.
+void writeFrameColumnsCsv(std::ostream& out);
+
 }  // namespace cdb

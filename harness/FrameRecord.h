@@ -1,6 +1,7 @@
 #pragma once
 // One row of frames.csv: what one strategy did on one frame of one cell, and the columns it is
-// written as. kFrameColumns is the one list of the fields: the CSV writer and reader loop over it.
+// written as. kFrameColumns is the one list of the fields: the CSV writer and reader loop over it,
+// `cdbench frame-columns` prints it, and the report's reader is tested against that output.
 #include <array>
 #include <cstdint>
 #include <string>

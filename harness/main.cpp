@@ -11,6 +11,7 @@
 #include "core/Errors.h"
 #include "culling/StrategyRegistry.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
+#include "harness/FrameCsv.h"
 #include "harness/MergeRuns.h"
 #include "harness/RegressionCheck.h"
 #include "harness/RunOptions.h"
@@ -78,6 +79,8 @@ int main(int argc, char** argv) {
 
   auto* list = app.add_subcommand("strategies", "list the culling strategies");
   auto* backends = app.add_subcommand("backends", "list the visibility backends");
+  auto* frameColumns = app.add_subcommand(
+      "frame-columns", "print the columns of frames.csv as CSV: column, kind (string, int, double), description");
 
   cdb::RunOptions run;
   std::string strategies, resolutions, objects;
@@ -150,6 +153,10 @@ int main(int argc, char** argv) {
         std::printf("%-12s %s%s%s\n", name.c_str(), registry.description(name).c_str(),
                     registry.traits(name).needsGl ? " [needs EGL/OpenGL]" : "",
                     name == registry.kDefault ? " [default]" : "");
+      return 0;
+    }
+    if (*frameColumns) {
+      cdb::writeFrameColumnsCsv(std::cout);
       return 0;
     }
     if (*list) {

@@ -1,5 +1,5 @@
 // frames.csv: the writer and reader follow kFrameColumns, keep the header and number formatting of
-// the files already under results/.
+// the files already under results/, and `cdbench frame-columns` prints the same list.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,6 +11,7 @@
 #include "core/Errors.h"
 #include "harness/FrameCsv.h"
 #include "tests/common/FreshTempDir.h"
+#include "tests/common/ShellCommand.h"
 
 namespace cdb {
 namespace {
@@ -149,6 +150,20 @@ TEST(FrameCsv, AMalformedRowNamesFileAndLine) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), file.string() + ":3: expected 25 columns, got 4");
   }
+}
+
+TEST(FrameColumns, CdbenchPrintsThemWithTheirKinds) {
+  const auto r = test::runShellCommand(std::string(CDBENCH_BINARY_DIR) + "/cdbench frame-columns");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ostringstream expected;
+  writeFrameColumnsCsv(expected);
+  EXPECT_EQ(r.output, expected.str());
+  EXPECT_NE(r.output.find("\nresolution,int,"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\ncd_ms,double,"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\nstrategy,string,"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\nobjects,int,\"moving bodies (the thesis' \"\"number of objects\"\")\"\n"),
+            std::string::npos)
+      << r.output;
 }
 
 }  // namespace

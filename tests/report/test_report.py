@@ -15,12 +15,9 @@ REPORT = ROOT / "scripts" / "report.py"
 THESIS = ROOT / "results" / "thesis" / "tables.csv"
 
 sys.path.insert(0, str(ROOT / "scripts"))
-from report import statistics  # noqa: E402
+from report import runs, statistics  # noqa: E402
 
-FRAME_HEADER = ("environment,strategy,visibility,resolution,objects,repeat,frame,cd_ms,cull_ms,exact_ms,"
-                "pcs_size,sets,pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,"
-                "false_negatives,false_positives,culling_misses,queries,draws,triangles_drawn,pixels_tested,"
-                "pixels_written").split(",")
+FRAME_HEADER = [name for name, _ in runs.FRAME_COLUMNS]
 RENDERER = "llvmpipe (LLVM 15.0.6, 256 bits)"
 # env1 as a run on the CPU backend (no GL recorded), env3 as one made before backends had names.
 BACKEND = {"env1": "cpu", "env3": "gl-queries"}
