@@ -1,6 +1,6 @@
 #pragma once
 // frames.csv: one FrameRecord per line, with a header, columns as kFrameColumns lists them. Read
-// back for merging and tables.
+// back for merging and resuming.
 #include <filesystem>
 #include <iosfwd>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
-// The result files of a complete run (or of merged shards): frames.csv, tables.csv, tables.md,
-// meta.json, each written atomically, meta.json last.
+// The result files of a complete run (or of merged shards): frames.csv and meta.json, each written
+// atomically, meta.json last. Average and maximum CD time per cell are the report's
+// (scripts/report.py), from frames.csv: one computation, with its intervals over repeats.
 #include <filesystem>
 #include <vector>
 

@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   bool raw = false, noTruth = false;
   int frames = 0, repeats = 0;
   std::uint64_t seed = 0;
-  auto* runCmd = app.add_subcommand("run", "run a scenario config and write frames, tables, meta");
+  auto* runCmd = app.add_subcommand("run", "run a scenario config and write frames.csv and meta.json");
   runCmd->add_option("config", run.configPath, "scenario YAML (configs/env1.yaml ...)")->required();
   runCmd->add_option("--strategies", strategies, "comma-separated strategy names");
   runCmd->add_option("--resolutions", resolutions, "list 500,600 or range 500:1200:100");
@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
 
   std::filesystem::path mergeOut;
   std::vector<std::filesystem::path> mergeDirs;
-  auto* mergeCmd = app.add_subcommand("merge", "join the cells of shards into frames, tables, meta");
+  auto* mergeCmd = app.add_subcommand("merge", "join the cells of shards into frames.csv and meta.json");
   mergeCmd->add_option("--out", mergeOut, "output folder")->required();
   mergeCmd->add_option("dirs", mergeDirs, "run folders of the shards")->required();
 

@@ -47,20 +47,6 @@ def write_run(folder, env, rows, backend=None):
         w = csv.writer(f)
         w.writerow(FRAME_HEADER)
         w.writerows(rows)
-    cells = {}
-    for r in rows:
-        rec = dict(zip(FRAME_HEADER, r))
-        cells.setdefault((rec["strategy"], rec["resolution"], rec["objects"]), []).append(rec)
-    with open(folder / "tables.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["table", "environment", "statistic", "strategy", "resolution", "objects", "cd_time_ms",
-                    "frames", "false_negatives"])
-        for statistic in ("average", "maximum"):
-            for (s, res, obj), recs in cells.items():
-                times = [x["cd_ms"] for x in recs]
-                v = sum(times) / len(times) if statistic == "average" else max(times)
-                w.writerow(["", env, statistic, s, res, obj, f"{v:.4f}", len(recs),
-                            sum(x["false_negatives"] for x in recs)])
     meta = {"machine": {"cpu": "Test CPU 3000", "logical_cores": 4, "memory_gib": 16.0,
                         "git_commit": "0123456789abcdef"},
             "gl": {"platform": "surfaceless", "vendor": "Mesa", "renderer": RENDERER,
@@ -407,6 +393,35 @@ class ReportOnBackendFolders(unittest.TestCase):
         result = run_report(self.dir, "--primary", "gl-flags")
         self.assertNotEqual(result.returncode, 0)
         self.assertIn("--primary gl-flags: no such backend folder; found: cpu, gl-queries", result.stderr)
+
+
+class ReportOnAnOlderRunWithOnlyTablesCsv(unittest.TestCase):
+    """Runs made before the report alone computed the tables wrote a tables.csv; without frames.csv it is used."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = Path(tempfile.mkdtemp(prefix="cdbench-report-tables-"))
+        cls.dir = cls.tmp / "results"
+        write_run(cls.dir / "env3", "env3", env3_rows())
+        (cls.dir / "env3" / "frames.csv").unlink()
+        (cls.dir / "env3" / "tables.csv").write_text(
+            "table,environment,statistic,strategy,resolution,objects,cd_time_ms,frames,false_negatives\n"
+            "4.3,env3,average,cullide,800,50,5.0000,3,0\n"
+            "4.3,env3,average,ours,800,50,2.0000,3,0\n"
+            "4.3,env3,maximum,cullide,800,50,6.5000,3,0\n"
+            "4.3,env3,maximum,ours,800,50,3.2500,3,0\n")
+        cls.result = run_report(cls.dir)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_cells_come_from_tables_csv_and_the_report_says_so(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stderr)
+        rows = read_csv_rows(self.dir / "env3" / "comparison.csv")
+        self.assertAlmostEqual(float(rows[("cd_time_ms", "average", "cullide")]["50"]), 5.0, places=4)
+        self.assertAlmostEqual(float(rows[("cd_time_ms", "maximum", "ours")]["50"]), 3.25, places=4)
+        self.assertIn("frames.csv is missing: tables from tables.csv", (self.dir / "REPORT.md").read_text())
 
 
 class ReportOnBadInput(unittest.TestCase):

@@ -1,44 +1,9 @@
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
-
-#include "harness/CdTimeTables.h"
 #include "harness/TruthComparison.h"
 
 namespace cdb {
 namespace {
-
-FrameRecord row(std::string strategy, int res, int objects, double ms) {
-  FrameRecord r;
-  r.environment = "env3";
-  r.strategy = std::move(strategy);
-  r.resolution = res;
-  r.objects = objects;
-  r.cdMs = ms;
-  r.sets = 2;
-  return r;
-}
-
-TEST(CdTimeTables, AverageAndMaximumPerStrategyAndColumn) {
-  const std::vector<FrameRecord> frames = {row("cullide", 800, 50, 1.0), row("cullide", 800, 50, 3.0),
-                                           row("cullide", 800, 75, 5.0), row("ours", 800, 50, 0.5)};
-  const auto cells = summariseCdTimes(frames);
-  ASSERT_EQ(cells.size(), 3u);
-  EXPECT_EQ(cells[0].strategy, "cullide");
-  EXPECT_EQ(cells[0].objects, 50);
-  EXPECT_DOUBLE_EQ(cells[0].averageMs, 2.0);
-  EXPECT_DOUBLE_EQ(cells[0].maximumMs, 3.0);
-  EXPECT_EQ(cells[0].frames, 2u);
-  EXPECT_EQ(cells[1].objects, 75);
-  EXPECT_EQ(cells[2].strategy, "ours");
-
-  const std::string md = cdTimeTablesMarkdown(cells);
-  // Object counts vary, so they are the columns (the shape of Table 4.3).
-  EXPECT_NE(md.find("| strategy | 50 | 75 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| cullide | 2.0000 | 5.0000 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| ours | 0.5000 |  |"), std::string::npos) << md;
-}
 
 TEST(TruthComparison, CountsMissesSplitsAndExtras) {
   const std::vector<ObjectPair> truth = {{0, 1}, {2, 3}, {4, 5}};
