@@ -28,10 +28,14 @@ void parseField(FrameRecord& r, const FrameField& field, const std::string& text
       [&](auto member) {
         auto& value = r.*member;
         using T = std::remove_reference_t<decltype(value)>;
-        if constexpr (std::is_same_v<T, std::string>) value = text;
-        else if constexpr (std::is_same_v<T, int>) value = std::stoi(text);
-        else if constexpr (std::is_same_v<T, double>) value = std::stod(text);
-        else value = std::stoull(text);
+        if constexpr (std::is_same_v<T, std::string>)
+          value = text;
+        else if constexpr (std::is_same_v<T, int>)
+          value = std::stoi(text);
+        else if constexpr (std::is_same_v<T, double>)
+          value = std::stod(text);
+        else
+          value = std::stoull(text);
       },
       field);
 }
@@ -70,7 +74,8 @@ std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file) {
                        std::to_string(f.size()));
     try {
       FrameRecord r;
-      for (std::size_t i = 0; i < kFrameColumns.size(); ++i) parseField(r, kFrameColumns[i].field, f[i]);
+      for (std::size_t i = 0; i < kFrameColumns.size(); ++i)
+        parseField(r, kFrameColumns[i].field, f[i]);
       rows.push_back(std::move(r));
     } catch (const std::logic_error&) {
       throw InputError(file.string() + ":" + std::to_string(lineNo) + ": expected numbers");

@@ -52,7 +52,8 @@ struct FrameColumn {
 
 // frames.csv's columns, in file order.
 inline constexpr std::array kFrameColumns = {
-    FrameColumn{"environment", &FrameRecord::environment, "the config's environment (env1, env2, env3)"},
+    FrameColumn{"environment", &FrameRecord::environment,
+                "the config's environment (env1, env2, env3)"},
     FrameColumn{"strategy", &FrameRecord::strategy, "the culling strategy or CPU peer detector"},
     FrameColumn{"visibility", &FrameRecord::visibility,
                 "the visibility backend that answered the strategy's tests"},
@@ -80,7 +81,8 @@ inline constexpr std::array kFrameColumns = {
                 "ground-truth pairs split across sets or pruned"},
     FrameColumn{"queries", &FrameRecord::queries, "occlusion queries issued"},
     FrameColumn{"draws", &FrameRecord::draws, "draw calls (queried and depth-writing)"},
-    FrameColumn{"triangles_drawn", &FrameRecord::trianglesDrawn, "triangles submitted by the draws"},
+    FrameColumn{"triangles_drawn", &FrameRecord::trianglesDrawn,
+                "triangles submitted by the draws"},
     FrameColumn{"pixels_tested", &FrameRecord::pixelsTested,
                 "pixels rasterised by the backend's tests (0 where it does not count)"},
     FrameColumn{"pixels_written", &FrameRecord::pixelsWritten,
@@ -92,9 +94,12 @@ inline constexpr std::array kFrameColumns = {
   return std::visit(
       [](auto member) -> std::string_view {
         using T = std::remove_cvref_t<decltype(FrameRecord{}.*member)>;
-        if constexpr (std::is_same_v<T, std::string>) return "string";
-        else if constexpr (std::is_same_v<T, double>) return "double";
-        else return "int";
+        if constexpr (std::is_same_v<T, std::string>)
+          return "string";
+        else if constexpr (std::is_same_v<T, double>)
+          return "double";
+        else
+          return "int";
       },
       field);
 }

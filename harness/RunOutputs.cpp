@@ -14,8 +14,10 @@ nlohmann::json frameTotals(const std::vector<FrameRecord>& rows) {
     falseNegatives += r.falseNegatives;
     falsePositives += r.falsePositives;
   }
-  return {{"frame_rows", rows.size()}, {"truth_pairs", truthPairs},
-          {"false_negatives", falseNegatives}, {"false_positives", falsePositives}};
+  return {{"frame_rows", rows.size()},
+          {"truth_pairs", truthPairs},
+          {"false_negatives", falseNegatives},
+          {"false_positives", falsePositives}};
 }
 
 void writeRunOutputs(const std::filesystem::path& dir, const std::vector<FrameRecord>& rows,

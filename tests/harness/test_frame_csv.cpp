@@ -32,9 +32,12 @@ FrameRecord distinctRecord() {
         [&](auto member) {
           auto& value = r.*member;
           using T = std::remove_reference_t<decltype(value)>;
-          if constexpr (std::is_same_v<T, std::string>) value = "text" + std::to_string(i);
-          else if constexpr (std::is_same_v<T, double>) value = 100.25 + static_cast<double>(i);
-          else value = static_cast<T>(100 + i);
+          if constexpr (std::is_same_v<T, std::string>)
+            value = "text" + std::to_string(i);
+          else if constexpr (std::is_same_v<T, double>)
+            value = 100.25 + static_cast<double>(i);
+          else
+            value = static_cast<T>(100 + i);
         },
         kFrameColumns[i].field);
   return r;
@@ -77,20 +80,40 @@ TEST(FrameCsv, ReadsEachColumnIntoItsMember) {
   const auto file = test::freshTempDir("frame_csv_members") / "frames.csv";
   {
     std::ofstream out(file);
-    out << kHeader << "env9,cis,cpu,1,2,3,4,5.5,6.5,7.5,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22\n";
+    out << kHeader
+        << "env9,cis,cpu,1,2,3,4,5.5,6.5,7.5,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22\n";
   }
   const auto rows = readFrameCsv(file);
   ASSERT_EQ(rows.size(), 1u);
   // Set by member name, so a column read into another member shows.
-  const FrameRecord expected{.environment = "env9", .strategy = "cis", .visibility = "cpu",
-                             .resolution = 1, .objects = 2, .repeat = 3, .frame = 4,
-                             .cdMs = 5.5, .cullMs = 6.5, .exactMs = 7.5, .pcsSize = 8, .sets = 9,
-                             .pcsTriangles = 10, .pairsTested = 11, .triangleTests = 12,
-                             .collidingPairs = 13, .truthPairs = 14, .falseNegatives = 15,
-                             .falsePositives = 16, .cullingMisses = 17, .queries = 18, .draws = 19,
-                             .trianglesDrawn = 20, .pixelsTested = 21, .pixelsWritten = 22};
+  const FrameRecord expected{.environment = "env9",
+                             .strategy = "cis",
+                             .visibility = "cpu",
+                             .resolution = 1,
+                             .objects = 2,
+                             .repeat = 3,
+                             .frame = 4,
+                             .cdMs = 5.5,
+                             .cullMs = 6.5,
+                             .exactMs = 7.5,
+                             .pcsSize = 8,
+                             .sets = 9,
+                             .pcsTriangles = 10,
+                             .pairsTested = 11,
+                             .triangleTests = 12,
+                             .collidingPairs = 13,
+                             .truthPairs = 14,
+                             .falseNegatives = 15,
+                             .falsePositives = 16,
+                             .cullingMisses = 17,
+                             .queries = 18,
+                             .draws = 19,
+                             .trianglesDrawn = 20,
+                             .pixelsTested = 21,
+                             .pixelsWritten = 22};
   for (const auto& c : kFrameColumns)
-    std::visit([&](auto member) { EXPECT_EQ(rows[0].*member, expected.*member) << c.name; }, c.field);
+    std::visit([&](auto member) { EXPECT_EQ(rows[0].*member, expected.*member) << c.name; },
+               c.field);
 }
 
 TEST(FrameCsv, RoundTripsEveryColumn) {
@@ -145,8 +168,9 @@ TEST(FrameColumns, CdbenchPrintsThemWithTheirKinds) {
   EXPECT_NE(r.output.find("\nresolution,int,"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\ncd_ms,double,"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\nstrategy,string,"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("\nobjects,int,\"moving bodies (the thesis' \"\"number of objects\"\")\"\n"),
-            std::string::npos)
+  EXPECT_NE(
+      r.output.find("\nobjects,int,\"moving bodies (the thesis' \"\"number of objects\"\")\"\n"),
+      std::string::npos)
       << r.output;
 }
 
