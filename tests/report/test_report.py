@@ -395,42 +395,38 @@ class ReportOnBackendFolders(unittest.TestCase):
         self.assertIn("--primary gl-flags: no such backend folder; found: cpu, gl-queries", result.stderr)
 
 
-class ReportOnAnOlderRunWithOnlyTablesCsv(unittest.TestCase):
+class InFreshResultDir(unittest.TestCase):
+    """Each test writes its own result folder, self.dir."""
+
+    def setUp(self):
+        self.tmp = Path(tempfile.mkdtemp(prefix="cdbench-report-"))
+        self.dir = self.tmp / "results"
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+
+class ReportOnAnOlderRunWithOnlyTablesCsv(InFreshResultDir):
     """Runs made before the report alone computed the tables wrote a tables.csv; without frames.csv it is used."""
 
-    @classmethod
-    def setUpClass(cls):
-        cls.tmp = Path(tempfile.mkdtemp(prefix="cdbench-report-tables-"))
-        cls.dir = cls.tmp / "results"
-        write_run(cls.dir / "env3", "env3", env3_rows())
-        (cls.dir / "env3" / "frames.csv").unlink()
-        (cls.dir / "env3" / "tables.csv").write_text(
+    def test_cells_come_from_tables_csv_and_the_report_says_so(self):
+        write_run(self.dir / "env3", "env3", env3_rows())
+        (self.dir / "env3" / "frames.csv").unlink()
+        (self.dir / "env3" / "tables.csv").write_text(
             "table,environment,statistic,strategy,resolution,objects,cd_time_ms,frames,false_negatives\n"
             "4.3,env3,average,cullide,800,50,5.0000,3,0\n"
             "4.3,env3,average,ours,800,50,2.0000,3,0\n"
             "4.3,env3,maximum,cullide,800,50,6.5000,3,0\n"
             "4.3,env3,maximum,ours,800,50,3.2500,3,0\n")
-        cls.result = run_report(cls.dir)
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.tmp, ignore_errors=True)
-
-    def test_cells_come_from_tables_csv_and_the_report_says_so(self):
-        self.assertEqual(self.result.returncode, 0, self.result.stderr)
+        result = run_report(self.dir)
+        self.assertEqual(result.returncode, 0, result.stderr)
         rows = read_csv_rows(self.dir / "env3" / "comparison.csv")
         self.assertAlmostEqual(float(rows[("cd_time_ms", "average", "cullide")]["50"]), 5.0, places=4)
         self.assertAlmostEqual(float(rows[("cd_time_ms", "maximum", "ours")]["50"]), 3.25, places=4)
         self.assertIn("frames.csv is missing: tables from tables.csv", (self.dir / "REPORT.md").read_text())
 
 
-class ReportOnBadInput(unittest.TestCase):
-    def setUp(self):
-        self.tmp = Path(tempfile.mkdtemp(prefix="cdbench-report-bad-"))
-        self.dir = self.tmp / "results"
-
-    def tearDown(self):
-        shutil.rmtree(self.tmp, ignore_errors=True)
+class ReportOnBadInput(InFreshResultDir):
 
     def assert_one_line_failure(self, result, *fragments):
         self.assertNotEqual(result.returncode, 0)
