@@ -33,7 +33,9 @@ std::vector<std::string> sweepArgs(const fs::path& out) {
 }
 
 fs::path freshDir(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("cdbench_resume_" + name);
+  // One folder per process: two test runs at once on one machine do not share it.
+  const auto dir =
+      fs::temp_directory_path() / ("cdbench_resume_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir);
   return dir;
 }
