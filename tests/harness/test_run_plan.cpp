@@ -31,6 +31,7 @@ std::size_t groupIndex(const std::vector<cdb::Cell>& plan, const cdb::Cell& cell
 }
 
 struct SplitCase {
+  std::string name;
   int repeats;
   std::vector<int> counts;
   int shares;
@@ -80,10 +81,11 @@ TEST_P(ShareSplit, SharesStartAtGroupsSpreadOverThePlanAndKeepGroupsTogether) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Sweeps, ShareSplit,
-                         ::testing::Values(SplitCase{10, {}, 16},          // env1, 16 cores
-                                           SplitCase{10, {}, 2},           // env1, 2 cores
-                                           SplitCase{10, {50, 100}, 16},   // env3-like
-                                           SplitCase{1, {}, 3},            // one simulation
-                                           SplitCase{2, {12, 16}, 3}));    // the shard test's sweep
+                         ::testing::Values(SplitCase{"env1_on_16", 10, {}, 16},
+                                           SplitCase{"env1_on_2", 10, {}, 2},
+                                           SplitCase{"two_counts_on_16", 10, {50, 100}, 16},
+                                           SplitCase{"one_simulation_on_3", 1, {}, 3},
+                                           SplitCase{"shard_test_sweep_on_3", 2, {12, 16}, 3}),
+                         [](const auto& testCase) { return testCase.param.name; });
 
 }  // namespace
