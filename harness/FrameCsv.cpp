@@ -1,7 +1,7 @@
 #include "harness/FrameCsv.h"
 
-#include <charconv>
 #include <fstream>
+#include <ostream>
 #include <sstream>
 #include <string>
 
@@ -10,30 +10,54 @@
 namespace cdb {
 
 namespace {
-constexpr const char* kHeader =
-    "environment,strategy,visibility,resolution,objects,repeat,frame,cd_ms,cull_ms,exact_ms,pcs_size,"
-    "sets,pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,false_negatives,"
-    "false_positives,culling_misses,queries,draws,triangles_drawn,pixels_tested,pixels_written";
-constexpr int kColumns = 25;
+const std::string& header() {
+  static const std::string text = [] {
+    std::string h;
+    for (const auto& column : kFrameColumns) {
+      if (!h.empty()) h += ',';
+      h += column.name;
+    }
+    return h;
+  }();
+  return text;
+}
+
+// Throws std::logic_error (from std::sto*) when the text is not a number.
+void parseField(FrameRecord& r, const FrameField& field, const std::string& text) {
+  std::visit(
+      [&](auto member) {
+        auto& value = r.*member;
+        using T = std::remove_reference_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, std::string>)
+          value = text;
+        else if constexpr (std::is_same_v<T, int>)
+          value = std::stoi(text);
+        else if constexpr (std::is_same_v<T, double>)
+          value = std::stod(text);
+        else
+          value = std::stoull(text);
+      },
+      field);
+}
 }  // namespace
 
-void writeFrameCsvHeader(std::ostream& out) { out << kHeader << '\n'; }
+void writeFrameCsvHeader(std::ostream& out) { out << header() << '\n'; }
 
 void writeFrameCsvRow(std::ostream& out, const FrameRecord& r) {
-  out << r.environment << ',' << r.strategy << ',' << r.visibility << ',' << r.resolution << ',' << r.objects << ','
-      << r.repeat << ',' << r.frame << ',' << r.cdMs << ',' << r.cullMs << ',' << r.exactMs << ','
-      << r.pcsSize << ',' << r.sets << ',' << r.pcsTriangles << ',' << r.pairsTested << ','
-      << r.triangleTests << ',' << r.collidingPairs << ',' << r.truthPairs << ','
-      << r.falseNegatives << ',' << r.falsePositives << ',' << r.cullingMisses << ','
-      << r.queries << ',' << r.draws << ',' << r.trianglesDrawn << ',' << r.pixelsTested << ','
-      << r.pixelsWritten << '\n';
+  const char* separator = "";
+  for (const auto& column : kFrameColumns) {
+    out << separator;
+    std::visit([&](auto member) { out << r.*member; }, column.field);
+    separator = ",";
+  }
+  out << '\n';
 }
 
 std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw InputError(file.string() + ": cannot open frames file");
   std::string line;
-  if (!std::getline(in, line) || line != kHeader)
+  if (!std::getline(in, line) || line != header())
     throw InputError(file.string() + ":1: expected the frames.csv header");
   std::vector<FrameRecord> rows;
   int lineNo = 1;
@@ -44,34 +68,29 @@ std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file) {
     std::stringstream ss(line);
     std::string cell;
     while (std::getline(ss, cell, ',')) f.push_back(cell);
-    if (static_cast<int>(f.size()) != kColumns)
+    if (f.size() != kFrameColumns.size())
       throw InputError(file.string() + ":" + std::to_string(lineNo) + ": expected " +
-                       std::to_string(kColumns) + " columns, got " + std::to_string(f.size()));
+                       std::to_string(kFrameColumns.size()) + " columns, got " +
+                       std::to_string(f.size()));
     try {
       FrameRecord r;
-      std::size_t i = 0;
-      r.environment = f[i++];
-      r.strategy = f[i++];
-      r.visibility = f[i++];
-      r.resolution = std::stoi(f[i++]);
-      r.objects = std::stoi(f[i++]);
-      r.repeat = std::stoi(f[i++]);
-      r.frame = std::stoi(f[i++]);
-      r.cdMs = std::stod(f[i++]);
-      r.cullMs = std::stod(f[i++]);
-      r.exactMs = std::stod(f[i++]);
-      for (std::uint64_t* v : {&r.pcsSize, &r.sets, &r.pcsTriangles, &r.pairsTested,
-                               &r.triangleTests, &r.collidingPairs, &r.truthPairs,
-                               &r.falseNegatives, &r.falsePositives, &r.cullingMisses,
-                               &r.queries, &r.draws, &r.trianglesDrawn, &r.pixelsTested,
-                               &r.pixelsWritten})
-        *v = std::stoull(f[i++]);
+      for (std::size_t i = 0; i < kFrameColumns.size(); ++i)
+        parseField(r, kFrameColumns[i].field, f[i]);
       rows.push_back(std::move(r));
     } catch (const std::logic_error&) {
       throw InputError(file.string() + ":" + std::to_string(lineNo) + ": expected numbers");
     }
   }
   return rows;
+}
+
+void writeFrameColumnsCsv(std::ostream& out) {
+  out << "column,kind,description\n";
+  for (const auto& column : kFrameColumns) {
+    std::string quoted;
+    for (char c : column.description) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    out << column.name << ',' << kindOf(column.field) << ",\"" << quoted << "\"\n";
+  }
 }
 
 }  // namespace cdb

@@ -1,21 +1,28 @@
 #pragma once
-// One row of frames.csv: what one strategy did on one frame of one cell.
+// One row of frames.csv: what one strategy did on one frame of one cell, and the columns it is
+// written as. kFrameColumns is the one list of the fields: the CSV writer and reader loop over it,
+// `cdbench frame-columns` prints it, and the report's reader is tested against that output.
+#include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <type_traits>
+#include <variant>
 
 namespace cdb {
 
+// Each member's meaning is in its column's description below.
 struct FrameRecord {
   std::string environment;
   std::string strategy;
-  std::string visibility;  // the visibility backend that answered the strategy's tests
+  std::string visibility;
   int resolution = 0;
-  int objects = 0;  // moving bodies (the thesis' "number of objects")
+  int objects = 0;
   int repeat = 0;
   int frame = 0;
-  double cdMs = 0;     // cull + exact: poses known -> colliding pairs known
-  double cullMs = 0;   // culling, GPU waits included
-  double exactMs = 0;  // sweep-and-prune and triangle tests
+  double cdMs = 0;
+  double cullMs = 0;
+  double exactMs = 0;
   std::uint64_t pcsSize = 0;
   std::uint64_t sets = 0;
   std::uint64_t pcsTriangles = 0;
@@ -23,14 +30,78 @@ struct FrameRecord {
   std::uint64_t triangleTests = 0;
   std::uint64_t collidingPairs = 0;
   std::uint64_t truthPairs = 0;
-  std::uint64_t falseNegatives = 0;  // ground-truth pairs missing from the final answer
-  std::uint64_t falsePositives = 0;  // final pairs the ground truth does not have
-  std::uint64_t cullingMisses = 0;   // ground-truth pairs split across sets or pruned
+  std::uint64_t falseNegatives = 0;
+  std::uint64_t falsePositives = 0;
+  std::uint64_t cullingMisses = 0;
   std::uint64_t queries = 0;
   std::uint64_t draws = 0;
   std::uint64_t trianglesDrawn = 0;
-  std::uint64_t pixelsTested = 0;   // rasterised by the backend itself (0 where it does not count)
+  std::uint64_t pixelsTested = 0;
   std::uint64_t pixelsWritten = 0;
 };
+
+// The member a column holds, of one of the types a column can have.
+using FrameField = std::variant<std::string FrameRecord::*, int FrameRecord::*,
+                                double FrameRecord::*, std::uint64_t FrameRecord::*>;
+
+struct FrameColumn {
+  std::string_view name;  // in the header of frames.csv
+  FrameField field;
+  std::string_view description;
+};
+
+// frames.csv's columns, in file order.
+inline constexpr std::array kFrameColumns = {
+    FrameColumn{"environment", &FrameRecord::environment,
+                "the config's environment (env1, env2, env3)"},
+    FrameColumn{"strategy", &FrameRecord::strategy, "the culling strategy or CPU peer detector"},
+    FrameColumn{"visibility", &FrameRecord::visibility,
+                "the visibility backend that answered the strategy's tests"},
+    FrameColumn{"resolution", &FrameRecord::resolution, "frame-buffer side in pixels (square)"},
+    FrameColumn{"objects", &FrameRecord::objects,
+                "moving bodies (the thesis' \"number of objects\")"},
+    FrameColumn{"repeat", &FrameRecord::repeat, "the independent simulation (seed + repeat)"},
+    FrameColumn{"frame", &FrameRecord::frame, "the simulated frame's index"},
+    FrameColumn{"cd_ms", &FrameRecord::cdMs, "cull + exact: poses known -> colliding pairs known"},
+    FrameColumn{"cull_ms", &FrameRecord::cullMs, "culling; GPU waits included"},
+    FrameColumn{"exact_ms", &FrameRecord::exactMs, "sweep-and-prune and triangle tests"},
+    FrameColumn{"pcs_size", &FrameRecord::pcsSize, "objects left in some set after culling"},
+    FrameColumn{"sets", &FrameRecord::sets, "potentially colliding sets"},
+    FrameColumn{"pcs_triangles", &FrameRecord::pcsTriangles, "triangles left for the exact phase"},
+    FrameColumn{"pairs_tested", &FrameRecord::pairsTested,
+                "object pairs whose triangles were tested"},
+    FrameColumn{"triangle_tests", &FrameRecord::triangleTests, "triangle-triangle tests run"},
+    FrameColumn{"colliding_pairs", &FrameRecord::collidingPairs, "object pairs found colliding"},
+    FrameColumn{"truth_pairs", &FrameRecord::truthPairs, "colliding pairs of the ground truth"},
+    FrameColumn{"false_negatives", &FrameRecord::falseNegatives,
+                "ground-truth pairs missing from the final answer"},
+    FrameColumn{"false_positives", &FrameRecord::falsePositives,
+                "final pairs the ground truth does not have"},
+    FrameColumn{"culling_misses", &FrameRecord::cullingMisses,
+                "ground-truth pairs split across sets or pruned"},
+    FrameColumn{"queries", &FrameRecord::queries, "occlusion queries issued"},
+    FrameColumn{"draws", &FrameRecord::draws, "draw calls (queried and depth-writing)"},
+    FrameColumn{"triangles_drawn", &FrameRecord::trianglesDrawn,
+                "triangles submitted by the draws"},
+    FrameColumn{"pixels_tested", &FrameRecord::pixelsTested,
+                "pixels rasterised by the backend's tests (0 where it does not count)"},
+    FrameColumn{"pixels_written", &FrameRecord::pixelsWritten,
+                "pixels rasterised by the backend's depth writes (0 where it does not count)"},
+};
+
+// How a column's text reads: "string", "int" (signed or not) or "double".
+[[nodiscard]] constexpr std::string_view kindOf(const FrameField& field) {
+  return std::visit(
+      [](auto member) -> std::string_view {
+        using T = std::remove_cvref_t<decltype(FrameRecord{}.*member)>;
+        if constexpr (std::is_same_v<T, std::string>)
+          return "string";
+        else if constexpr (std::is_same_v<T, double>)
+          return "double";
+        else
+          return "int";
+      },
+      field);
+}
 
 }  // namespace cdb

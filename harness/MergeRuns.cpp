@@ -51,11 +51,6 @@ MergeSummary mergeRuns(const std::filesystem::path& outDir,
                      std::to_string(identity.plan.size()) + " cells missing (first: " +
                      firstMissing + "): run the remaining shards first");
 
-  std::uint64_t fn = 0, fp = 0;
-  for (const auto& r : rows) {
-    fn += r.falseNegatives;
-    fp += r.falsePositives;
-  }
   nlohmann::json meta;
   meta["cdbench_version"] = CDBENCH_VERSION;  // CMake's project version
   meta["created_utc"] = utcTimestamp();
@@ -73,8 +68,8 @@ MergeSummary mergeRuns(const std::filesystem::path& outDir,
   // command line's overrides).
   if (!shards.empty() && shards.front().is_object() && shards.front().contains("culling"))
     meta["config"]["culling"] = shards.front()["culling"];
-  meta["summary"] = {{"frame_rows", rows.size()}, {"cells", identity.plan.size()},
-                     {"false_negatives", fn}, {"false_positives", fp}};
+  meta["summary"] = frameTotals(rows);
+  meta["summary"]["cells"] = identity.plan.size();
   std::filesystem::create_directories(outDir);
   writeRunOutputs(outDir, rows, meta);
   return {identity.plan.size(), rows.size()};

@@ -1,7 +1,7 @@
 #pragma once
 // `cdbench merge --out OUT DIR...`: joins the cells of shards of one run (each DIR written by
-// `cdbench run ... --shard i/n`, or the same DIR shared by all shards) into the same frames.csv,
-// tables and meta.json an unsharded run writes.
+// `cdbench run ... --shard i/n`, or the same DIR shared by all shards) into the same frames.csv
+// and meta.json an unsharded run writes.
 #include <filesystem>
 #include <vector>
 

@@ -1,5 +1,7 @@
 #include "harness/RunPlan.h"
 
+#include <algorithm>
+
 #include "core/Errors.h"
 
 namespace cdb {
@@ -44,11 +46,29 @@ std::vector<Cell> planCells(const ScenarioConfig& config) {
 }
 
 std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard) {
-  std::vector<Cell> out;
-  for (std::size_t k = 0; k < cells.size(); ++k)
-    if (static_cast<int>(k % static_cast<std::size_t>(shard.count)) == shard.index - 1)
-      out.push_back(cells[k]);
-  return out;
+  // Dealt round-robin in plan order (balanced: every share gets every strategy and resolution);
+  // each dealt cell keeps the index of its simulation group.
+  std::vector<Cell> dealt;
+  std::vector<std::size_t> groupOf;
+  std::size_t group = 0;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    if (k > 0 && !cells[k].sameFrames(cells[k - 1])) ++group;
+    if (static_cast<int>(k % static_cast<std::size_t>(shard.count)) == shard.index - 1) {
+      dealt.push_back(cells[k]);
+      groupOf.push_back(group);
+    }
+  }
+  if (dealt.empty()) return dealt;
+  // Shares run at once start at groups spread over the plan, so that they do not all simulate
+  // the same group at the same time: the share that reaches a group first keeps its recording and
+  // the others read it (CellStore::recordingPath).
+  const std::size_t groups = group + 1;
+  const std::size_t start = static_cast<std::size_t>(shard.index - 1) * groups /
+                            static_cast<std::size_t>(shard.count);
+  const auto first = std::find_if(groupOf.begin(), groupOf.end(),
+                                  [&](std::size_t g) { return g >= start; });
+  std::rotate(dealt.begin(), dealt.begin() + (first - groupOf.begin()), dealt.end());
+  return dealt;
 }
 
 }  // namespace cdb

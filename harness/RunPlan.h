@@ -23,7 +23,8 @@ struct Cell {
   }
 };
 
-// A share of the cells: the i-th of n (1-based), cells dealt round-robin in plan order.
+// A share of the cells: the i-th of n (1-based), cells dealt round-robin in plan order; see
+// shareOf for the order a share runs them in.
 struct Shard {
   int index = 1;
   int count = 1;
@@ -36,6 +37,9 @@ struct Shard {
 // Every cell of the config's sweep, grouped by (object count, repeat) so that each group's frames
 // are simulated once, then strategies, then resolutions.
 [[nodiscard]] std::vector<Cell> planCells(const ScenarioConfig& config);
+// The share's cells (the i-th of every n in plan order), run starting at the simulation group
+// ((i - 1) * groups / n) and wrapping around, so that shares started together simulate different
+// groups first and later read each other's recordings instead of simulating every group each.
 [[nodiscard]] std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard);
 
 }  // namespace cdb

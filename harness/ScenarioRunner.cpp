@@ -356,21 +356,15 @@ RunSummary runScenario(const RunOptions& options) {
                     {"culling", shardMeta["culling"]},
                     {"ground_truth", options.groundTruth},
                     {"text", configText}};
-  std::uint64_t fn = 0, fp = 0, truthPairsTotal = 0;
-  for (const auto& r : rows) {
-    fn += r.falseNegatives;
-    fp += r.falsePositives;
-    truthPairsTotal += r.truthPairs;
-  }
   meta["commit"] = meta["machine"]["git_commit"];
-  meta["summary"] = {{"frame_rows", rows.size()}, {"cells", plan.size()}, {"complete", true},
-                     {"truth_pairs", truthPairsTotal}, {"false_negatives", fn},
-                     {"false_positives", fp}};
+  meta["summary"] = frameTotals(rows);
+  meta["summary"]["cells"] = plan.size();
+  meta["summary"]["complete"] = true;
   writeRunOutputs(options.outDir, rows, meta);
   summary.frameRows = rows.size();
   summary.complete = true;
-  summary.falseNegatives = fn;
-  summary.falsePositives = fp;
+  summary.falseNegatives = meta["summary"]["false_negatives"].get<std::uint64_t>();
+  summary.falsePositives = meta["summary"]["false_positives"].get<std::uint64_t>();
   return summary;
 }
 

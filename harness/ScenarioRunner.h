@@ -2,7 +2,7 @@
 // `cdbench run`: simulate each (object count, repeat) once, replay its frames to every strategy
 // at every resolution, time culling + exact phase per frame, check against the ground truth.
 // Each finished cell is kept on disk (see CellStore); when every cell of the run is there,
-// frames.csv, tables.csv, tables.md and meta.json are written into the output folder.
+// frames.csv and meta.json are written into the output folder.
 #include "harness/RunOptions.h"
 #include "harness/WallTimeBreakdown.h"
 #include "scenes/ScenarioConfig.h"
@@ -13,7 +13,7 @@ struct RunSummary {
   std::size_t cellsRun = 0;      // measured by this invocation
   std::size_t cellsSkipped = 0;  // already finished (resumed)
   std::size_t frameRows = 0;     // rows of frames.csv, 0 while the run is incomplete
-  bool complete = false;         // every cell of the whole run is on disk and the tables written
+  bool complete = false;         // every cell of the whole run is on disk and frames.csv written
   std::uint64_t falseNegatives = 0;
   std::uint64_t falsePositives = 0;
   WallTimeBreakdown time;  // this invocation's wall time, by where it went

@@ -11,6 +11,7 @@
 #include "core/Errors.h"
 #include "culling/StrategyRegistry.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
+#include "harness/FrameCsv.h"
 #include "harness/MergeRuns.h"
 #include "harness/RegressionCheck.h"
 #include "harness/RunOptions.h"
@@ -78,6 +79,8 @@ int main(int argc, char** argv) {
 
   auto* list = app.add_subcommand("strategies", "list the culling strategies");
   auto* backends = app.add_subcommand("backends", "list the visibility backends");
+  auto* frameColumns = app.add_subcommand(
+      "frame-columns", "print the columns of frames.csv as CSV: column, kind (string, int, double), description");
 
   cdb::RunOptions run;
   std::string strategies, resolutions, objects;
@@ -85,7 +88,7 @@ int main(int argc, char** argv) {
   bool raw = false, noTruth = false;
   int frames = 0, repeats = 0;
   std::uint64_t seed = 0;
-  auto* runCmd = app.add_subcommand("run", "run a scenario config and write frames, tables, meta");
+  auto* runCmd = app.add_subcommand("run", "run a scenario config and write frames.csv and meta.json");
   runCmd->add_option("config", run.configPath, "scenario YAML (configs/env1.yaml ...)")->required();
   runCmd->add_option("--strategies", strategies, "comma-separated strategy names");
   runCmd->add_option("--resolutions", resolutions, "list 500,600 or range 500:1200:100");
@@ -115,7 +118,7 @@ int main(int argc, char** argv) {
 
   std::filesystem::path mergeOut;
   std::vector<std::filesystem::path> mergeDirs;
-  auto* mergeCmd = app.add_subcommand("merge", "join the cells of shards into frames, tables, meta");
+  auto* mergeCmd = app.add_subcommand("merge", "join the cells of shards into frames.csv and meta.json");
   mergeCmd->add_option("--out", mergeOut, "output folder")->required();
   mergeCmd->add_option("dirs", mergeDirs, "run folders of the shards")->required();
 
@@ -150,6 +153,10 @@ int main(int argc, char** argv) {
         std::printf("%-12s %s%s%s\n", name.c_str(), registry.description(name).c_str(),
                     registry.traits(name).needsGl ? " [needs EGL/OpenGL]" : "",
                     name == registry.kDefault ? " [default]" : "");
+      return 0;
+    }
+    if (*frameColumns) {
+      cdb::writeFrameColumnsCsv(std::cout);
       return 0;
     }
     if (*list) {

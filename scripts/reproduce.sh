@@ -87,8 +87,8 @@ run() {
     pids+=($!)
   done
   for pid in "${pids[@]}"; do wait "$pid" || status=1; done
-  # The shares wrote their cells into one folder; the last to finish wrote the tables. Should two
-  # have finished at once, merging again writes them from every cell.
+  # The shares wrote their cells into one folder; the last to finish wrote frames.csv and meta.json.
+  # Should two have finished at once, merging again writes them from every cell.
   ((status == 0)) && [[ -s $dir/frames.csv ]] || build/cdbench merge --out "$dir" "$dir" >/dev/null 2>&1 || status=1
   # One environment failing (e.g. env2 without the dragon on the asset path) does not lose the
   # others: the report says which is missing, and the script exits non-zero at the end.

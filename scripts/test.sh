@@ -45,7 +45,7 @@ if [[ "${CDBENCH_SKIP_SANITIZERS:-0}" != 1 ]]; then
   rm -rf "$smoke"
   ASAN_OPTIONS=detect_leaks=0 build-asan/cdbench run configs/env3.yaml --objects 10 --frames 3 --resolutions 64 --repeats 1 \
     --quiet --out "$smoke"
-  for f in frames.csv tables.csv tables.md meta.json; do
+  for f in frames.csv meta.json; do
     [[ -s "$smoke/$f" ]] || { echo "test: sanitizer smoke run wrote no $f" >&2; exit 1; }
   done
   stage "sanitizer tests"

@@ -189,7 +189,7 @@ def _environment(s, result_dir, layout, cost_models):
     if cmp.layout.other_fixed_values:
         out.append(f"- Note: also run at {cmp.layout.fixed_dimension} "
                    f"{', '.join(map(str, cmp.layout.other_fixed_values))}; tabulated: {cmp.layout.describe_fixed()} "
-                   f"(all cells are in {folder}/tables.csv).")
+                   f"(all cells are in {folder}/frames.csv).")
     if run.notes or cmp.layout.other_fixed_values:
         out.append("")
     out += ["### Tables", "", f"Also in `{folder}/comparison.md` and `{folder}/comparison.csv`. "

@@ -1,4 +1,8 @@
-"""Reading run outputs: one folder per environment with frames.csv, tables.csv, meta.json (README "Outputs")."""
+"""Reading run outputs: one folder per environment with frames.csv and meta.json (README "Outputs").
+
+Average and maximum CD time per cell are computed here, from frames.csv, and nowhere else: the runner
+writes no tables. A tables.csv, which runs made before that wrote, is read only where frames.csv is
+missing."""
 
 import json
 from dataclasses import dataclass, field
@@ -6,13 +10,22 @@ from pathlib import Path
 
 from .tabular import InputError, read_typed_csv
 
+# frames.csv's columns in file order, each with how it reads: what `cdbench frame-columns` prints
+# (tests/report/test_frame_columns.py fails when the two differ). A copy, not a call to the binary: the
+# report runs on machines that hold only results.
+FRAME_COLUMNS = (("environment", "string"), ("strategy", "string"), ("visibility", "string"),
+                 ("resolution", "int"), ("objects", "int"), ("repeat", "int"), ("frame", "int"),
+                 ("cd_ms", "double"), ("cull_ms", "double"), ("exact_ms", "double"),
+                 ("pcs_size", "int"), ("sets", "int"), ("pcs_triangles", "int"), ("pairs_tested", "int"),
+                 ("triangle_tests", "int"), ("colliding_pairs", "int"), ("truth_pairs", "int"),
+                 ("false_negatives", "int"), ("false_positives", "int"), ("culling_misses", "int"),
+                 ("queries", "int"), ("draws", "int"), ("triangles_drawn", "int"), ("pixels_tested", "int"),
+                 ("pixels_written", "int"))
+FRAME_INTS = tuple(name for name, kind in FRAME_COLUMNS if kind == "int")
+FRAME_TIMES = tuple(name for name, kind in FRAME_COLUMNS if kind == "double")
+# What the report cannot do without; results written before a column existed lack it.
 FRAME_REQUIRED = ("environment", "strategy", "resolution", "objects", "repeat", "frame", "cd_ms",
                   "sets", "false_negatives")
-FRAME_INTS = ("resolution", "objects", "repeat", "frame", "pcs_size", "sets", "pcs_triangles",
-              "pairs_tested", "triangle_tests", "colliding_pairs", "truth_pairs", "false_negatives",
-              "false_positives", "culling_misses", "queries", "draws", "triangles_drawn", "pixels_tested",
-              "pixels_written")
-FRAME_TIMES = ("cd_ms", "cull_ms", "exact_ms")
 
 STATISTICS = ("average", "maximum")
 TABLE_REQUIRED = ("environment", "statistic", "strategy", "resolution", "objects", "cd_time_ms")
@@ -96,14 +109,11 @@ def read_environment(result_dir: Path, name: str, backend: str = "") -> Environm
     if meta_json.exists():
         run.meta = _read_meta(meta_json)
 
-    table_cells = _read_table_cells(tables_csv) if tables_csv.exists() else None
     if frames_csv.exists():
         run.frames = read_typed_csv(frames_csv, FRAME_REQUIRED, FRAME_INTS, FRAME_TIMES)
         run.cells = cells_from_frames(run.frames)
-        if table_cells is not None:
-            run.notes.extend(_disagreements(run.cells, table_cells, tables_csv))
-    elif table_cells is not None:
-        run.cells = table_cells
+    elif tables_csv.exists():
+        run.cells = _read_table_cells(tables_csv)
         run.notes.append("frames.csv is missing: tables from tables.csv, no per-frame figures, "
                          "false negatives from tables.csv")
     if not run.cells:
@@ -172,21 +182,6 @@ def _read_table_cells(path):
                                        frames=r.get("frames", 0), false_negatives=r.get("false_negatives", 0)))
         setattr(c, r["statistic"], r["cd_time_ms"])
     return [c for c in cells.values() if c.average == c.average and c.maximum == c.maximum]
-
-
-def _disagreements(frame_cells, table_cells, tables_csv):
-    """tables.csv is derived from frames.csv by the runner; a mismatch means the two are from different runs."""
-    by_key = {(c.strategy, c.resolution, c.objects): c for c in table_cells}
-    bad = []
-    for c in frame_cells:
-        t = by_key.get((c.strategy, c.resolution, c.objects))
-        # tables.csv prints 4 decimals; frames.csv keeps more.
-        if t is None or abs(t.average - c.average) > 1e-3 or abs(t.maximum - c.maximum) > 1e-3:
-            bad.append(f"{c.strategy}@{c.resolution}/{c.objects}")
-    if bad:
-        return [f"{tables_csv.name} does not match frames.csv for {len(bad)} cell(s) "
-                f"(e.g. {', '.join(bad[:3])}); the report uses frames.csv"]
-    return []
 
 
 def _read_meta(path):

@@ -1,5 +1,5 @@
-// The cdbench binary end to end: a small env3 run writes its four files with no false negative;
-// bad input exits 2 with one line.
+// The cdbench binary end to end: a small env3 run writes frames.csv and meta.json with no false
+// negative; bad input exits 2 with one line.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -23,12 +23,12 @@ std::filesystem::path tempDir(const std::string& name) { return cdb::test::fresh
 
 const std::string kConfigs = std::string(CDBENCH_SOURCE_DIR) + "/configs/";
 
-TEST(Cli, Env3RunWritesFramesTablesAndMetaWithNoFalseNegatives) {
+TEST(Cli, Env3RunWritesFramesAndMetaWithNoFalseNegatives) {
   const auto out = tempDir("env3");
   const auto r = runCdbench("run " + kConfigs + "env3.yaml --strategies cullide --objects 20 "
                             "--frames 4 --repeats 1 --resolutions 128 --quiet --out " + out.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* f : {"frames.csv", "tables.csv", "tables.md", "meta.json"})
+  for (const char* f : {"frames.csv", "meta.json"})
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
   const auto rows = cdb::readFrameCsv(out / "frames.csv");
   ASSERT_EQ(rows.size(), 4u);

@@ -15,12 +15,9 @@ REPORT = ROOT / "scripts" / "report.py"
 THESIS = ROOT / "results" / "thesis" / "tables.csv"
 
 sys.path.insert(0, str(ROOT / "scripts"))
-from report import statistics  # noqa: E402
+from report import runs, statistics  # noqa: E402
 
-FRAME_HEADER = ("environment,strategy,visibility,resolution,objects,repeat,frame,cd_ms,cull_ms,exact_ms,"
-                "pcs_size,sets,pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,"
-                "false_negatives,false_positives,culling_misses,queries,draws,triangles_drawn,pixels_tested,"
-                "pixels_written").split(",")
+FRAME_HEADER = [name for name, _ in runs.FRAME_COLUMNS]
 RENDERER = "llvmpipe (LLVM 15.0.6, 256 bits)"
 # env1 as a run on the CPU backend (no GL recorded), env3 as one made before backends had names.
 BACKEND = {"env1": "cpu", "env3": "gl-queries"}
@@ -50,20 +47,6 @@ def write_run(folder, env, rows, backend=None):
         w = csv.writer(f)
         w.writerow(FRAME_HEADER)
         w.writerows(rows)
-    cells = {}
-    for r in rows:
-        rec = dict(zip(FRAME_HEADER, r))
-        cells.setdefault((rec["strategy"], rec["resolution"], rec["objects"]), []).append(rec)
-    with open(folder / "tables.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["table", "environment", "statistic", "strategy", "resolution", "objects", "cd_time_ms",
-                    "frames", "false_negatives"])
-        for statistic in ("average", "maximum"):
-            for (s, res, obj), recs in cells.items():
-                times = [x["cd_ms"] for x in recs]
-                v = sum(times) / len(times) if statistic == "average" else max(times)
-                w.writerow(["", env, statistic, s, res, obj, f"{v:.4f}", len(recs),
-                            sum(x["false_negatives"] for x in recs)])
     meta = {"machine": {"cpu": "Test CPU 3000", "logical_cores": 4, "memory_gib": 16.0,
                         "git_commit": "0123456789abcdef"},
             "gl": {"platform": "surfaceless", "vendor": "Mesa", "renderer": RENDERER,
@@ -412,13 +395,38 @@ class ReportOnBackendFolders(unittest.TestCase):
         self.assertIn("--primary gl-flags: no such backend folder; found: cpu, gl-queries", result.stderr)
 
 
-class ReportOnBadInput(unittest.TestCase):
+class InFreshResultDir(unittest.TestCase):
+    """Each test writes its own result folder, self.dir."""
+
     def setUp(self):
-        self.tmp = Path(tempfile.mkdtemp(prefix="cdbench-report-bad-"))
+        self.tmp = Path(tempfile.mkdtemp(prefix="cdbench-report-"))
         self.dir = self.tmp / "results"
 
     def tearDown(self):
         shutil.rmtree(self.tmp, ignore_errors=True)
+
+
+class ReportOnAnOlderRunWithOnlyTablesCsv(InFreshResultDir):
+    """Runs made before the report alone computed the tables wrote a tables.csv; without frames.csv it is used."""
+
+    def test_cells_come_from_tables_csv_and_the_report_says_so(self):
+        write_run(self.dir / "env3", "env3", env3_rows())
+        (self.dir / "env3" / "frames.csv").unlink()
+        (self.dir / "env3" / "tables.csv").write_text(
+            "table,environment,statistic,strategy,resolution,objects,cd_time_ms,frames,false_negatives\n"
+            "4.3,env3,average,cullide,800,50,5.0000,3,0\n"
+            "4.3,env3,average,ours,800,50,2.0000,3,0\n"
+            "4.3,env3,maximum,cullide,800,50,6.5000,3,0\n"
+            "4.3,env3,maximum,ours,800,50,3.2500,3,0\n")
+        result = run_report(self.dir)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = read_csv_rows(self.dir / "env3" / "comparison.csv")
+        self.assertAlmostEqual(float(rows[("cd_time_ms", "average", "cullide")]["50"]), 5.0, places=4)
+        self.assertAlmostEqual(float(rows[("cd_time_ms", "maximum", "ours")]["50"]), 3.25, places=4)
+        self.assertIn("frames.csv is missing: tables from tables.csv", (self.dir / "REPORT.md").read_text())
+
+
+class ReportOnBadInput(InFreshResultDir):
 
     def assert_one_line_failure(self, result, *fragments):
         self.assertNotEqual(result.returncode, 0)

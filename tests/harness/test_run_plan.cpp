@@ -1,0 +1,91 @@
+// How a run's cells are split into shares: every cell in exactly one share, and shares started
+// together begin with different simulation groups.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "harness/RunPlan.h"
+
+namespace {
+
+cdb::ScenarioConfig sweep(int repeats, std::vector<int> counts) {
+  cdb::ScenarioConfig config;
+  config.sweep.repeats = repeats;
+  config.sweep.objectCounts = std::move(counts);
+  config.sweep.strategies = {"cullide", "cullide_bvh", "quick_cullide", "ours"};
+  config.sweep.resolutions = {500, 600, 700, 800, 900, 1000, 1100, 1200};
+  return config;
+}
+
+std::size_t groupIndex(const std::vector<cdb::Cell>& plan, const cdb::Cell& cell) {
+  std::size_t group = 0;
+  for (std::size_t k = 0; k < plan.size(); ++k) {
+    if (k > 0 && !plan[k].sameFrames(plan[k - 1])) ++group;
+    if (plan[k].key() == cell.key()) return group;
+  }
+  ADD_FAILURE() << cell.key() << " is not in the plan";
+  return 0;
+}
+
+struct SplitCase {
+  std::string name;
+  int repeats;
+  std::vector<int> counts;
+  int shares;
+};
+
+class ShareSplit : public ::testing::TestWithParam<SplitCase> {};
+
+TEST_P(ShareSplit, EveryCellOnceAndRoundRobinBalanced) {
+  const auto& c = GetParam();
+  const auto plan = cdb::planCells(sweep(c.repeats, c.counts));
+  std::multiset<std::string> seen;
+  for (int i = 1; i <= c.shares; ++i) {
+    const auto share = cdb::shareOf(plan, {i, c.shares});
+    // Round-robin: the share holds exactly the plan's cells i, i + n, i + 2n, ...
+    std::set<std::string> expected;
+    for (std::size_t k = static_cast<std::size_t>(i - 1); k < plan.size();
+         k += static_cast<std::size_t>(c.shares))
+      expected.insert(plan[k].key());
+    std::set<std::string> got;
+    for (const auto& cell : share) got.insert(cell.key()), seen.insert(cell.key());
+    EXPECT_EQ(got, expected) << "share " << i;
+  }
+  EXPECT_EQ(seen.size(), plan.size());
+  for (const auto& cell : plan) EXPECT_EQ(seen.count(cell.key()), 1u) << cell.key();
+}
+
+TEST_P(ShareSplit, SharesStartAtGroupsSpreadOverThePlanAndKeepGroupsTogether) {
+  const auto& c = GetParam();
+  const auto plan = cdb::planCells(sweep(c.repeats, c.counts));
+  const std::size_t groups =
+      static_cast<std::size_t>(c.repeats) * std::max<std::size_t>(1, c.counts.size());
+  std::set<std::size_t> firstGroups;
+  for (int i = 1; i <= c.shares; ++i) {
+    const auto share = cdb::shareOf(plan, {i, c.shares});
+    ASSERT_FALSE(share.empty());
+    firstGroups.insert(groupIndex(plan, share.front()));
+    // A share visits each of its groups in one stretch (one simulation or one read of it).
+    std::set<std::size_t> finished;
+    for (std::size_t k = 0; k < share.size(); ++k) {
+      const std::size_t g = groupIndex(plan, share[k]);
+      EXPECT_EQ(finished.count(g), 0u) << "share " << i << " returns to group " << g;
+      if (k + 1 == share.size() || groupIndex(plan, share[k + 1]) != g) finished.insert(g);
+    }
+  }
+  // As many different first groups as there can be: every share its own where groups are many.
+  EXPECT_EQ(firstGroups.size(), std::min<std::size_t>(groups, static_cast<std::size_t>(c.shares)));
+}
+
+INSTANTIATE_TEST_SUITE_P(Sweeps, ShareSplit,
+                         ::testing::Values(SplitCase{"env1_on_16", 10, {}, 16},
+                                           SplitCase{"env1_on_2", 10, {}, 2},
+                                           SplitCase{"two_counts_on_16", 10, {50, 100}, 16},
+                                           SplitCase{"one_simulation_on_3", 1, {}, 3},
+                                           SplitCase{"shard_test_sweep_on_3", 2, {12, 16}, 3}),
+                         [](const auto& testCase) { return testCase.param.name; });
+
+}  // namespace
