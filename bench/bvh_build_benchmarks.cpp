@@ -1,5 +1,5 @@
 // bvh_build/<mesh>/<env>: one build of a mesh's 8-ary OBB tree (thesis 3.4.1, ObbTree::build)
-// under the tree options an environment's config gives it (hierarchyOptions: leaf size, offset),
+// under the tree options an environment's config gives ours (hierarchyOptions: leaf size, offset),
 // the one-off cost a strategy with a hierarchy pays per mesh (runs share trees: cachedHierarchy).
 // The meshes come from the configs without simulating anything: the torus under env1 (leaves of
 // up to 8 triangles) and env3 (16), the plane under env1 (env2's planes are the same), the dragon
@@ -34,7 +34,8 @@ const Mesh& meshOfGroup(const SceneGeometry& scene, const std::string& group) {
 void buildTree(benchmark::State& state, RecordedFrames& frames, const MeshOfEnvironment& m) {
   const RecordedScene& environment = frames.unsimulated(m.environment);
   const Mesh& mesh = meshOfGroup(environment.scene, m.group);
-  const ObbTreeOptions options = hierarchyOptions(mesh, environment.config.culling);
+  const ObbTreeOptions options =
+      hierarchyOptions(mesh, environment.config.culling.strategies.ours.hierarchy);
   for (auto _ : state) {
     ObbTree tree = ObbTree::build(mesh, options);
     benchmark::DoNotOptimize(tree);

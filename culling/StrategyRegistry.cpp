@@ -23,14 +23,19 @@ const StrategyRegistry& StrategyRegistry::builtin() {
     r.add("cullide", "CULLIDE without a hierarchy: object then triangle level, two passes, x y z",
           [](const StrategyOptions& o) { return std::make_unique<Cullide>(o); });
     r.add("cullide_bvh", "CULLIDE's pruning coarse to fine over each object's 8-ary OBB tree",
-          [](const StrategyOptions& o) { return std::make_unique<CullideWithHierarchy>(o); });
+          [](const StrategyOptions& o) {
+            return std::make_unique<CullideWithHierarchy>(o, o.culling.strategies.cullideBvh);
+          });
     r.add("sorted", "CULLIDE's two passes in depth order, one depth clear (thesis 3.2)",
           [](const StrategyOptions& o) { return std::make_unique<DepthSortedCulling>(o); });
     r.add("cis", "collision-independent sets along one view axis (thesis 3.3, Algorithm 3.2)",
-          [](const StrategyOptions& o) { return std::make_unique<CollisionIndependentSets>(o); });
+          [](const StrategyOptions& o) {
+            return std::make_unique<CollisionIndependentSets>(o, o.culling.strategies.cis);
+          });
     r.add("ours", "thesis 3.4: OBB trees, sorting, collision-independent sets, an axis per level",
           [](const StrategyOptions& o) {
-            return std::make_unique<HierarchicalCollisionIndependentSets>(o);
+            return std::make_unique<HierarchicalCollisionIndependentSets>(
+                o, o.culling.strategies.ours);
           });
     r.add("quick_cullide",
           "Quick-CULLIDE: CULLIDE's passes with each pass' answers kept, pairs freed by either pass",

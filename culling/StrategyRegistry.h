@@ -17,7 +17,9 @@ namespace cdb {
 
 struct StrategyOptions {
   int resolution = 800;  // frame-buffer side in pixels
-  CullingSpec culling;   // conservative/raw mode, BVH parameters
+  // The config's culling section: the visibility mode, and each strategy's own options, which
+  // the registry's factories pass to the strategy.
+  CullingSpec culling;
 };
 
 class StrategyRegistry {

@@ -64,6 +64,10 @@ MergeSummary mergeRuns(const std::filesystem::path& outDir,
   }
   meta["config"] = {{"path", identity.configPath}, {"environment", identity.environment},
                     {"text", identity.configText}};
+  // The shards of one run share its options (their identity covers the config text and the
+  // command line's overrides).
+  if (!shards.empty() && shards.front().is_object() && shards.front().contains("culling"))
+    meta["config"]["culling"] = shards.front()["culling"];
   meta["summary"] = frameTotals(rows);
   meta["summary"]["cells"] = identity.plan.size();
   std::filesystem::create_directories(outDir);

@@ -17,6 +17,7 @@
 #include "harness/AtomicFile.h"
 #include "harness/BackendWarmUp.h"
 #include "harness/CellStore.h"
+#include "harness/CullingSpecJson.h"
 #include "harness/InterruptFlag.h"
 #include "harness/ProgressBar.h"
 #include "harness/RunOutputs.h"
@@ -66,18 +67,19 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
   if (options.frames) config.dynamics.frames = *options.frames;
   if (options.repeats) config.sweep.repeats = *options.repeats;
   if (options.seed) config.seed = *options.seed;
-  if (options.conservative) config.culling.conservative = *options.conservative;
-  if (options.visibility) config.culling.visibility = *options.visibility;
-  if (options.threads) config.culling.threads = *options.threads;
-  config.culling.visibility = backendNameOf(config.culling);
+  VisibilitySpec& visibility = config.culling.visibility;
+  if (options.conservative) visibility.conservative = *options.conservative;
+  if (options.visibility) visibility.backend = *options.visibility;
+  if (options.threads) visibility.threads = *options.threads;
+  visibility.backend = backendNameOf(config.culling);
   try {
-    VisibilityBackendRegistry::builtin().validate(config.culling.visibility);
+    VisibilityBackendRegistry::builtin().validate(visibility.backend);
   } catch (const InputError& e) {
     if (options.visibility) throw InputError(std::string("--visibility: ") + e.what());
-    throw InputError(options.configPath.string() + ": culling.visibility: " + e.what());
+    throw InputError(options.configPath.string() + ": culling.visibility.backend: " + e.what());
   }
-  if (config.culling.threads < 0 || config.culling.threads > 1024)
-    throw InputError("--threads " + std::to_string(config.culling.threads) + ": expected 0..1024 (0 = every core)");
+  if (visibility.threads < 0 || visibility.threads > 1024)
+    throw InputError("--threads " + std::to_string(visibility.threads) + ": expected 0..1024 (0 = every core)");
 
   try {
     StrategyRegistry::builtin().validate(config.sweep.strategies);
@@ -110,12 +112,12 @@ std::uint64_t identityHash(const ScenarioConfig& config, const RunOptions& optio
   h.text(configText);
   h.i64(config.dynamics.frames);
   h.u64(config.seed);
-  h.byte(config.culling.conservative ? 1 : 0);
-  h.f64(config.culling.rawDepthOffset);
+  h.byte(config.culling.visibility.conservative ? 1 : 0);
+  h.f64(config.culling.visibility.rawDepthOffset);
   // Answers do not depend on the backend or its threads, but the times do: cells of another
   // backend are another measurement.
-  h.text(config.culling.visibility);
-  h.i64(config.culling.threads);
+  h.text(config.culling.visibility.backend);
+  h.i64(config.culling.visibility.threads);
   h.byte(options.groundTruth ? 1 : 0);
   h.text(options.replayFile ? options.replayFile->string() : std::string());
   h.i64(options.frameStride);
@@ -169,12 +171,12 @@ RunSummary runScenario(const RunOptions& options) {
 
   BackendResources resources(parseGlPlatform(options.glPlatform));
   const std::unique_ptr<VisibilityBackend> backendOwner = VisibilityBackendRegistry::builtin().create(
-      config.culling.visibility, resources, visibilityOptionsOf(config.culling));
+      config.culling.visibility.backend, resources, visibilityOptionsOf(config.culling));
   VisibilityBackend& backend = *backendOwner;
   for (int r : config.sweep.resolutions)
     if (r > backend.maxResolution())
       throw InputError("resolution " + std::to_string(r) + ": above the largest framebuffer the " +
-                       config.culling.visibility + " backend renders (" +
+                       config.culling.visibility.backend + " backend renders (" +
                        std::to_string(backend.maxResolution()) + " pixels, " + backend.renderer() + ")");
   const CellStore store(options.outDir, identity);
   RunSummary summary;
@@ -265,7 +267,7 @@ RunSummary runScenario(const RunOptions& options) {
       FrameRecord r;
       r.environment = cfg->environment;
       r.strategy = cell.strategy;
-      r.visibility = config.culling.visibility;
+      r.visibility = config.culling.visibility.backend;
       r.resolution = cell.resolution;
       r.objects = objects;
       r.repeat = cell.repeat;
@@ -313,11 +315,12 @@ RunSummary runScenario(const RunOptions& options) {
   shardMeta["created_utc"] = utcTimestamp();
   shardMeta["command_line"] = options.commandLine;
   shardMeta["machine"] = toJson(probeMachine());
-  shardMeta["visibility"] = {{"backend", config.culling.visibility},
+  shardMeta["visibility"] = {{"backend", config.culling.visibility.backend},
                              {"description", VisibilityBackendRegistry::builtin().description(
-                                                  config.culling.visibility)},
+                                                  config.culling.visibility.backend)},
                              {"renderer", backend.renderer()},
-                             {"threads", config.culling.threads}};
+                             {"threads", config.culling.visibility.threads}};
+  shardMeta["culling"] = toJson(config.culling);
   // GL is opened only by backends that need it; a run on the CPU backend records none.
   if (const HeadlessGlContext* gl = resources.openedGl()) shardMeta["gl"] = toJson(gl->info());
   shardMeta["wall_time"] = time.toJson();
@@ -347,9 +350,10 @@ RunSummary runScenario(const RunOptions& options) {
                     {"resolutions", config.sweep.resolutions},
                     {"object_counts", config.sweep.objectCounts},
                     {"strategies", config.sweep.strategies},
-                    {"conservative", config.culling.conservative},
-                    {"visibility", config.culling.visibility},
-                    {"threads", config.culling.threads},
+                    {"conservative", config.culling.visibility.conservative},
+                    {"visibility", config.culling.visibility.backend},
+                    {"threads", config.culling.visibility.threads},
+                    {"culling", shardMeta["culling"]},
                     {"ground_truth", options.groundTruth},
                     {"text", configText}};
   meta["commit"] = meta["machine"]["git_commit"];

@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
   std::string visibility;
   int threads = -1;
   runCmd->add_option("--visibility", visibility,
-                     "visibility backend (cdbench backends; default: the config's culling.visibility, else " +
+                     "visibility backend (cdbench backends; default: the config's culling.visibility.backend, else " +
                          std::string(cdb::VisibilityBackendRegistry::kDefault) + ")");
   auto* threadsOpt = runCmd->add_option("--threads", threads,
                                         "worker threads of a CPU visibility backend (0 = every core)");

@@ -30,6 +30,8 @@ inline constexpr IntLimits kMaxContactsPerPair{1, 256};
 inline constexpr IntLimits kTorusSegments{3, 1024};
 inline constexpr IntLimits kPlaneCells{1, 1024};
 inline constexpr IntLimits kLeafTriangles{1, 1024};
+// OBB tree children per split; of the range only 2, 4 and 8 are accepted.
+inline constexpr IntLimits kBranching{2, 8};
 inline constexpr IntLimits kThreads{0, 1024};
 // Triangles of one asset mesh (mesh.max_triangles). The default, about 170 times the thesis'
 // dragon, holds every common scan up to the 7.2 M-triangle XYZ RGB dragon; beyond it the loader,

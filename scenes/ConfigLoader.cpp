@@ -198,18 +198,69 @@ SweepSpec readSweep(const ConfigNode& node) {
   return s;
 }
 
+VisibilitySpec readVisibility(const ConfigNode& node) {
+  VisibilitySpec v;
+  if (!node.present()) return v;
+  node.expectKeys({"backend", "conservative", "raw_depth_offset", "threads"});
+  if (auto n = node["backend"]; n.present()) v.backend = n.string();
+  if (auto n = node["conservative"]; n.present()) v.conservative = n.boolean();
+  if (auto n = node["raw_depth_offset"]; n.present()) v.rawDepthOffset = n.number(L::kDepthOffset);
+  if (auto n = node["threads"]; n.present()) v.threads = int(n.integer(L::kThreads));
+  return v;
+}
+
+// The keys given in `node` over `base`: a strategy's own hierarchy overrides the shared one key
+// by key.
+HierarchySpec readHierarchy(const ConfigNode& node, HierarchySpec base) {
+  if (!node.present()) return base;
+  node.expectKeys({"branching", "leaf_triangles", "offset"});
+  if (auto n = node["branching"]; n.present()) {
+    base.branching = int(n.integer(L::kBranching));
+    if (base.branching != 2 && base.branching != 4 && base.branching != 8) n.fail("2, 4 or 8");
+  }
+  if (auto n = node["leaf_triangles"]; n.present())
+    base.leafTriangles = int(n.integer(L::kLeafTriangles));
+  if (auto n = node["offset"]; n.present()) base.offset = n.number(L::kBvhOffset);
+  return base;
+}
+
+AxisChoice readAxis(const ConfigNode& node) {
+  const std::string s = node.string();
+  if (s == "x") return 0;
+  if (s == "y") return 1;
+  if (s == "z") return 2;
+  if (s == "auto") return std::nullopt;
+  node.fail("x, y, z or auto");
+}
+
+StrategySpecs readStrategies(const ConfigNode& node, const HierarchySpec& hierarchy) {
+  StrategySpecs s;
+  s.ours.hierarchy = hierarchy;
+  s.cullideBvh.hierarchy = hierarchy;
+  if (!node.present()) return s;
+  node.expectKeys({"cis", "cullide_bvh", "ours"}, "a strategy with options");
+  if (auto cis = node["cis"]; cis.present()) {
+    cis.expectKeys({"axis"});
+    if (auto n = cis["axis"]; n.present()) s.cis.axis = readAxis(n);
+  }
+  if (auto ours = node["ours"]; ours.present()) {
+    ours.expectKeys({"first_axis", "hierarchy"});
+    if (auto n = ours["first_axis"]; n.present()) s.ours.firstAxis = readAxis(n);
+    s.ours.hierarchy = readHierarchy(ours["hierarchy"], hierarchy);
+  }
+  if (auto bvh = node["cullide_bvh"]; bvh.present()) {
+    bvh.expectKeys({"hierarchy"});
+    s.cullideBvh.hierarchy = readHierarchy(bvh["hierarchy"], hierarchy);
+  }
+  return s;
+}
+
 CullingSpec readCulling(const ConfigNode& node) {
   CullingSpec c;
   if (!node.present()) return c;
-  node.expectKeys({"conservative", "raw_depth_offset", "leaf_triangles", "bvh_offset", "visibility",
-                   "threads"});
-  if (auto n = node["visibility"]; n.present()) c.visibility = n.string();
-  if (auto n = node["threads"]; n.present()) c.threads = int(n.integer(L::kThreads));
-  if (auto n = node["conservative"]; n.present()) c.conservative = n.boolean();
-  if (auto n = node["raw_depth_offset"]; n.present()) c.rawDepthOffset = n.number(L::kDepthOffset);
-  if (auto n = node["leaf_triangles"]; n.present())
-    c.leafTriangles = int(n.integer(L::kLeafTriangles));
-  if (auto n = node["bvh_offset"]; n.present()) c.bvhOffset = n.number(L::kBvhOffset);
+  node.expectKeys({"visibility", "hierarchy", "strategies"});
+  c.visibility = readVisibility(node["visibility"]);
+  c.strategies = readStrategies(node["strategies"], readHierarchy(node["hierarchy"], {}));
   return c;
 }
 

@@ -90,7 +90,8 @@ std::vector<ConfigNode> ConfigNode::items(std::string_view expected) const {
   return out;
 }
 
-void ConfigNode::expectKeys(std::initializer_list<std::string_view> allowed) const {
+void ConfigNode::expectKeys(std::initializer_list<std::string_view> allowed,
+                            std::string_view what) const {
   std::string list;
   for (auto k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
   if (!node_.IsMap()) fail("a map with keys " + list);
@@ -100,7 +101,7 @@ void ConfigNode::expectKeys(std::initializer_list<std::string_view> allowed) con
     const ConfigNode at = child(entry.first, path_ == "(top level)" ? key : path_ + "." + key);
     if (!entry.first.IsScalar()) at.fail("a key that is a plain name", at.describe());
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-      at.fail("a known key (one of " + list + ")", "unknown key '" + key + "'");
+      at.fail(std::string(what) + " (one of " + list + ")", "unknown key '" + key + "'");
     }
     if (!seen.insert(key).second) at.fail("each key once", "'" + key + "' a second time");
   }

@@ -33,8 +33,10 @@ class ConfigNode {
   [[nodiscard]] const std::string& path() const { return path_; }
   [[nodiscard]] int line() const { return line_; }
 
-  // Fails unless this is a map whose keys are all in `allowed`, each once.
-  void expectKeys(std::initializer_list<std::string_view> allowed) const;
+  // Fails unless this is a map whose keys are all in `allowed`, each once; `what` names an
+  // allowed key in the message.
+  void expectKeys(std::initializer_list<std::string_view> allowed,
+                  std::string_view what = "a known key") const;
   // Fails with "expected <expected> (required), got no such key" when absent.
   void require(std::string_view expected) const;
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "scenes/ConfigLimits.h"
+#include "scenes/CullingSpec.h"
 
 namespace cdb {
 
@@ -89,17 +90,6 @@ struct SweepSpec {
   std::vector<int> objectCounts;  // values for countedGroup's count
   int repeats = 1;               // independent simulations (seed, seed+1, ...)
   std::vector<std::string> strategies{"cullide"};
-};
-
-struct CullingSpec {
-  bool conservative = true;       // widen by >= 1 pixel and offset depth (no contact lost)
-  double rawDepthOffset = 1e-5;   // the raw mode's small depth offset, in NDC depth units
-  int leafTriangles = 8;          // BVH leaf size (strategies with a hierarchy)
-  double bvhOffset = 1e-3;        // OBB enlargement, as a fraction of the mesh's size
-  // Visibility backend by registry name; empty = the harness' default
-  // (VisibilityBackendRegistry::kDefault). Checked against the registry by the harness.
-  std::string visibility;
-  int threads = 0;                // worker threads of CPU backends (0 = every core)
 };
 
 struct ScenarioConfig {

@@ -54,10 +54,11 @@ TreeCache& cache() {
 
 }  // namespace
 
-ObbTreeOptions hierarchyOptions(const Mesh& mesh, const CullingSpec& spec) {
+ObbTreeOptions hierarchyOptions(const Mesh& mesh, const HierarchySpec& spec) {
   ObbTreeOptions options;
+  options.branching = spec.branching;
   options.leafTriangles = spec.leafTriangles;
-  options.offset = spec.bvhOffset * mesh.bounds().diagonal().norm();
+  options.offset = spec.offset * mesh.bounds().diagonal().norm();
   return options;
 }
 
@@ -94,7 +95,7 @@ std::uint64_t obbTreeBuilds() {
   return c.builds;
 }
 
-void SceneHierarchies::build(const SceneGeometry& scene, const CullingSpec& spec) {
+void SceneHierarchies::build(const SceneGeometry& scene, const HierarchySpec& spec) {
   trees_.clear();
   for (const Mesh& mesh : scene.meshes)
     trees_.push_back(cachedHierarchy(mesh, hierarchyOptions(mesh, spec)));

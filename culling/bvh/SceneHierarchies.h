@@ -7,14 +7,15 @@
 #include <vector>
 
 #include "culling/bvh/ObbTree.h"
-#include "scenes/ScenarioConfig.h"
+#include "scenes/CullingSpec.h"
 #include "scenes/SceneGeometry.h"
 
 namespace cdb {
 
-// The tree options of a mesh under a config: leaf size as given, and the offset (a fraction of
-// the mesh's bounding-box diagonal in the config) as an absolute distance in mesh units.
-[[nodiscard]] ObbTreeOptions hierarchyOptions(const Mesh& mesh, const CullingSpec& spec);
+// The tree options of a mesh under a config: branching and leaf size as given, and the offset (a
+// fraction of the mesh's bounding-box diagonal in the config) as an absolute distance in mesh
+// units.
+[[nodiscard]] ObbTreeOptions hierarchyOptions(const Mesh& mesh, const HierarchySpec& spec);
 
 // A mesh's tree and, per node, the box fitted to the node's own triangles (with the offset).
 // The tree grows each parent's box to contain its children's, which nesting needs but a
@@ -40,7 +41,7 @@ struct MeshHierarchy {
 
 class SceneHierarchies {
  public:
-  void build(const SceneGeometry& scene, const CullingSpec& spec);
+  void build(const SceneGeometry& scene, const HierarchySpec& spec);
 
   [[nodiscard]] const ObbTree& ofMesh(std::uint32_t mesh) const { return trees_[mesh]->tree; }
   [[nodiscard]] const ObbTree& ofObject(ObjectId object) const {

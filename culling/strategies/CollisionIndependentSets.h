@@ -5,7 +5,6 @@
 // partition is safe; this draws whole objects for it.
 #include <array>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include "culling/CisConstruction.h"
@@ -13,15 +12,9 @@
 #include "culling/SortedIntervals.h"
 #include "culling/StrategyRegistry.h"
 #include "culling/WorldBounds.h"
+#include "scenes/CullingSpec.h"
 
 namespace cdb {
-
-struct CisOptions {
-  // View axis (0 = x, 1 = y, 2 = z). Unset: chosen per frame as the axis along which the object
-  // centres spread most (largest variance), where intervals overlap least and sets separate best.
-  // Pass 1 looks along +axis, so "far" is the larger coordinate.
-  std::optional<int> axis;
-};
 
 class CollisionIndependentSets final : public CullingStrategy {
  public:

@@ -6,12 +6,14 @@
 
 namespace cdb {
 
-CullideWithHierarchy::CullideWithHierarchy(const StrategyOptions& options) : options_(options) {}
+CullideWithHierarchy::CullideWithHierarchy(const StrategyOptions& options,
+                                           CullideWithHierarchyOptions config)
+    : options_(options), config_(config) {}
 
 void CullideWithHierarchy::attach(const SceneGeometry& scene, VisibilityBackend& backend) {
   scene_ = &scene;
   backend_ = &backend;
-  hierarchies_.build(scene, options_.culling);
+  hierarchies_.build(scene, config_.hierarchy);
   frontier_.attach(scene, hierarchies_);
 }
 

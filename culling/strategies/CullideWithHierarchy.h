@@ -14,12 +14,14 @@
 #include "culling/StrategyRegistry.h"
 #include "culling/bvh/NodeFrontier.h"
 #include "culling/bvh/SceneHierarchies.h"
+#include "scenes/CullingSpec.h"
 
 namespace cdb {
 
 class CullideWithHierarchy final : public CullingStrategy {
  public:
-  explicit CullideWithHierarchy(const StrategyOptions& options);
+  explicit CullideWithHierarchy(const StrategyOptions& options,
+                                CullideWithHierarchyOptions config = {});
 
   [[nodiscard]] std::string_view name() const override { return "cullide_bvh"; }
   void attach(const SceneGeometry& scene, VisibilityBackend& backend) override;
@@ -30,6 +32,7 @@ class CullideWithHierarchy final : public CullingStrategy {
   void pruneAlong(std::vector<ObjectId>& objects, int axis, std::span<const Pose> poses);
 
   StrategyOptions options_;
+  CullideWithHierarchyOptions config_;
   const SceneGeometry* scene_ = nullptr;
   VisibilityBackend* backend_ = nullptr;
   SceneHierarchies hierarchies_;

@@ -41,7 +41,7 @@ void HierarchicalCollisionIndependentSets::attach(const SceneGeometry& scene,
                                                   VisibilityBackend& backend) {
   scene_ = &scene;
   backend_ = &backend;
-  hierarchies_.build(scene, options_.culling);
+  hierarchies_.build(scene, config_.hierarchy);
   frontier_.attach(scene, hierarchies_);
   bounds_.attach(scene);
   lists_.clear();

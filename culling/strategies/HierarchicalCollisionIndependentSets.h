@@ -17,7 +17,6 @@
 #include <array>
 #include <cstdint>
 #include <map>
-#include <optional>
 #include <vector>
 
 #include "culling/CisConstruction.h"
@@ -27,15 +26,9 @@
 #include "culling/WorldBounds.h"
 #include "culling/bvh/NodeFrontier.h"
 #include "culling/bvh/SceneHierarchies.h"
+#include "scenes/CullingSpec.h"
 
 namespace cdb {
-
-struct HierarchicalCisOptions {
-  // Level 0's view axis (0 = x, 1 = y, 2 = z); level k looks along (axis + k) mod 3. Unset:
-  // chosen per frame as the axis along which the root boxes' centres spread most, where the
-  // first sets separate best.
-  std::optional<int> firstAxis;
-};
 
 class HierarchicalCollisionIndependentSets final : public CullingStrategy {
  public:

@@ -38,15 +38,15 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
 }
 
 std::string backendNameOf(const CullingSpec& culling) {
-  return culling.visibility.empty() ? std::string(VisibilityBackendRegistry::kDefault)
-                                    : culling.visibility;
+  return culling.visibility.backend.empty() ? std::string(VisibilityBackendRegistry::kDefault)
+                                            : culling.visibility.backend;
 }
 
 VisibilityOptions visibilityOptionsOf(const CullingSpec& culling) {
   VisibilityOptions o;
-  o.conservative = culling.conservative;
-  o.rawDepthOffset = culling.rawDepthOffset;
-  o.threads = culling.threads;
+  o.conservative = culling.visibility.conservative;
+  o.rawDepthOffset = culling.visibility.rawDepthOffset;
+  o.threads = culling.visibility.threads;
   return o;
 }
 

@@ -126,8 +126,8 @@ TEST_P(FlagBackendEquivalence, SameAnswerToEveryQuery) {
   const RecordedScene* recorded = shared.scene(f);
   if (recorded == nullptr) GTEST_SKIP() << f.scene.label() << ": a mesh is not on the asset path";
   const auto poses = recorded->recording.frame(static_cast<std::uint32_t>(f.frame));
-  const VisibilityOptions options{recorded->config.culling.conservative,
-                                  recorded->config.culling.rawDepthOffset};
+  const VisibilityOptions options{recorded->config.culling.visibility.conservative,
+                                  recorded->config.culling.visibility.rawDepthOffset};
 
   GlOcclusionQueryBackend queries(shared.context, options);
   RecordingBackend recorder(queries);

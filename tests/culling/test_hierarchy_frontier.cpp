@@ -43,7 +43,7 @@ TEST(SceneHierarchies, ScenesOnTheSameMeshesShareTheirTrees) {
   SceneGeometry scene;
   scene.meshes.push_back(makeTorus(0.51, 0.19, 6, 10));
   for (int i = 0; i < 4; ++i) scene.objects.push_back({0, false, "torus"});
-  CullingSpec spec;
+  HierarchySpec spec;
   spec.leafTriangles = 3;
   const std::uint64_t before = obbTreeBuilds();
   SceneHierarchies a;
@@ -55,12 +55,14 @@ TEST(SceneHierarchies, ScenesOnTheSameMeshesShareTheirTrees) {
   EXPECT_EQ(&a.ofObject(2), &b.ofMesh(0));
 }
 
-TEST(SceneHierarchies, OffsetIsAFractionOfTheMeshDiagonal) {
+TEST(SceneHierarchies, TreeOptionsAreTheConfigsWithTheOffsetAFractionOfTheMeshDiagonal) {
   const Mesh mesh = makeTorus(0.5, 0.2, 20, 20);
-  CullingSpec spec;
+  HierarchySpec spec;
+  spec.branching = 4;
   spec.leafTriangles = 16;
-  spec.bvhOffset = 0.01;
+  spec.offset = 0.01;
   const ObbTreeOptions options = hierarchyOptions(mesh, spec);
+  EXPECT_EQ(options.branching, 4);
   EXPECT_EQ(options.leafTriangles, 16);
   EXPECT_DOUBLE_EQ(options.offset, 0.01 * mesh.bounds().diagonal().norm());
 }
@@ -94,7 +96,7 @@ FrontierScene twoTori() {
   s.scene.meshes.push_back(makeTorus(0.5, 0.2, 8, 8));  // 128 triangles
   s.scene.objects.push_back({0, false, "torus"});
   s.scene.objects.push_back({0, false, "torus"});
-  CullingSpec spec;
+  HierarchySpec spec;
   spec.leafTriangles = 4;
   s.hierarchies.build(s.scene, spec);
   Pose p;

@@ -22,10 +22,10 @@ namespace {
 
 using Kind = VisibilityCall::Kind;
 
-StrategyOptions withLeaves(int leafTriangles) {
-  StrategyOptions o;
-  o.culling.leafTriangles = leafTriangles;
-  return o;
+HierarchySpec withLeaves(int leafTriangles) {
+  HierarchySpec h;
+  h.leafTriangles = leafTriangles;
+  return h;
 }
 
 // Three tori of 32 triangles in a row along x, overlapping their neighbours.
@@ -54,8 +54,8 @@ std::uint32_t nodeOf(const MeshHierarchy& h, const OrientedBox& box) {
   return 0;
 }
 
-std::shared_ptr<const MeshHierarchy> hierarchyOf(const Mesh& mesh, const StrategyOptions& o) {
-  return cachedHierarchy(mesh, hierarchyOptions(mesh, o.culling));
+std::shared_ptr<const MeshHierarchy> hierarchyOf(const Mesh& mesh, const HierarchySpec& h) {
+  return cachedHierarchy(mesh, hierarchyOptions(mesh, h));
 }
 
 bool inSubtree(const ObbTree& tree, std::uint32_t node, std::uint32_t root) {
@@ -125,7 +125,7 @@ void expectObjectsDrawnAsGroups(const ScriptedVisibilityOracle& oracle) {
 TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) {
   auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
-  CullideWithHierarchy strategy(withLeaves(2));
+  CullideWithHierarchy strategy(StrategyOptions{}, {withLeaves(2)});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
 
@@ -173,8 +173,8 @@ TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) 
 
 TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
   auto s = threeToriWithPoses();
-  const StrategyOptions options = withLeaves(2);
-  const auto hierarchy = hierarchyOf(s.scene.meshes[0], options);
+  const HierarchySpec leaves = withLeaves(2);
+  const auto hierarchy = hierarchyOf(s.scene.meshes[0], leaves);
   const ObbTree& tree = hierarchy->tree;
   const std::uint32_t kept = tree.nodes()[0].firstChild + 1;  // one child of the root
   ASSERT_FALSE(tree.nodes()[kept].leaf());
@@ -184,7 +184,7 @@ TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
     const std::uint32_t n = nodeOf(*hierarchy, q.box);
     return n != 0 && !inSubtree(tree, n, kept);
   });
-  CullideWithHierarchy strategy(options);
+  CullideWithHierarchy strategy(StrategyOptions{}, {leaves});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
 
@@ -210,7 +210,7 @@ TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
 TEST(CullideBvhOracle, EverythingFullyVisibleEndsAfterTheFirstAxis) {
   auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
-  CullideWithHierarchy strategy(withLeaves(2));
+  CullideWithHierarchy strategy(StrategyOptions{}, {withLeaves(2)});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
   EXPECT_TRUE(result.sets.empty());
@@ -225,7 +225,7 @@ TEST(CullideBvhOracle, AnObjectLeftAloneCollidesWithNothing) {
   auto s = threeToriWithPoses();
   // Object 1 is hidden in every pass, the others fully visible: it is left alone.
   ScriptedVisibilityOracle oracle([](const VisibilityCall& q, auto) { return q.object != 1; });
-  CullideWithHierarchy strategy(withLeaves(2));
+  CullideWithHierarchy strategy(StrategyOptions{}, {withLeaves(2)});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
   EXPECT_TRUE(result.sets.empty());
@@ -237,7 +237,7 @@ TEST(CullideBvhOracle, AnObjectLeftAloneCollidesWithNothing) {
 TEST(OursOracle, EachLevelLooksAlongTheNextAxisWithOnePassPairPerSet) {
   auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
-  HierarchicalCollisionIndependentSets strategy(withLeaves(2), HierarchicalCisOptions{1});
+  HierarchicalCollisionIndependentSets strategy(StrategyOptions{}, {1, withLeaves(2)});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
 
@@ -264,7 +264,7 @@ TEST(OursOracle, EachLevelLooksAlongTheNextAxisWithOnePassPairPerSet) {
 TEST(OursOracle, FirstObjectOfAPassIsNotQueriedAndTheLastNotWritten) {
   auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
-  HierarchicalCollisionIndependentSets strategy(withLeaves(2), HierarchicalCisOptions{0});
+  HierarchicalCollisionIndependentSets strategy(StrategyOptions{}, {0, withLeaves(2)});
   strategy.attach(s.scene, oracle);
   (void)strategy.cull({s.poses, 0});
 
@@ -317,7 +317,7 @@ TEST(OursOracle, ASetSplitsAtLevelOneAndEachSubsetHasItsOwnPasses) {
   auto s = twoPairs();
   testing::BoxGeometricOracle g;
   // Leaves of one triangle: a box mesh's tree then has three levels.
-  HierarchicalCollisionIndependentSets strategy(withLeaves(1), HierarchicalCisOptions{0});
+  HierarchicalCollisionIndependentSets strategy(StrategyOptions{}, {0, withLeaves(1)});
   strategy.attach(s.scene, g.backend());
   const auto result = strategy.cull({s.poses, 0});
 
@@ -345,7 +345,7 @@ TEST(OursOracle, ASetSplitsAtLevelOneAndEachSubsetHasItsOwnPasses) {
 TEST(OursOracle, SortedListsOfRecurringSetsAreKeptAcrossFrames) {
   auto s = twoPairs();
   testing::BoxGeometricOracle g;
-  HierarchicalCollisionIndependentSets strategy(withLeaves(2), HierarchicalCisOptions{0});
+  HierarchicalCollisionIndependentSets strategy(StrategyOptions{}, {0, withLeaves(2)});
   strategy.attach(s.scene, g.backend());
   (void)strategy.cull({s.poses, 0});
   EXPECT_EQ(strategy.lastFrame().listsKept, 0u);
@@ -407,7 +407,7 @@ void expectNoTouchingTriangleLost(const SceneGeometry& scene, std::span<const Po
         }
 }
 
-template <class Strategy>
+template <class Strategy, class Options>
 void checkRandomScenes() {
   TouchCheck check;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
@@ -426,7 +426,9 @@ void checkRandomScenes() {
       poses.push_back(p);
     }
     testing::BoxGeometricOracle g;
-    Strategy strategy(withLeaves(4));
+    Options options;
+    options.hierarchy = withLeaves(4);
+    Strategy strategy(StrategyOptions{}, options);
     strategy.attach(scene, g.backend());
     for (int frame = 0; frame < 2; ++frame) {
       if (frame == 1)
@@ -442,11 +444,11 @@ void checkRandomScenes() {
 }
 
 TEST(CullideBvhOracle, NeverLosesATouchingTrianglePairOnRandomTori) {
-  checkRandomScenes<CullideWithHierarchy>();
+  checkRandomScenes<CullideWithHierarchy, CullideWithHierarchyOptions>();
 }
 
 TEST(OursOracle, NeverLosesATouchingTrianglePairOnRandomTori) {
-  checkRandomScenes<HierarchicalCollisionIndependentSets>();
+  checkRandomScenes<HierarchicalCollisionIndependentSets, HierarchicalCisOptions>();
 }
 
 }  // namespace

@@ -47,6 +47,11 @@ TEST(Cli, Env3RunWritesFramesAndMetaWithNoFalseNegatives) {
   EXPECT_FALSE(meta.contains("gl")) << "the cpu backend opens no GL";
   EXPECT_FALSE(meta["machine"]["git_commit"].get<std::string>().empty());
   EXPECT_EQ(meta["config"]["environment"], "env3");
+  // The culling options in effect: env3's hierarchy reaches ours, its axis is chosen per frame.
+  const auto& ours = meta["config"]["culling"]["strategies"]["ours"];
+  EXPECT_EQ(ours["hierarchy"]["leaf_triangles"], 16);
+  EXPECT_EQ(ours["first_axis"], "auto");
+  EXPECT_EQ(meta["config"]["culling"]["visibility"]["backend"], "cpu");
 
   // The wall-time breakdown: the parts are disjoint, so they fit in the wall time, and the CD
   // time it counts is the frames' own.

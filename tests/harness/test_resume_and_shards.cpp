@@ -16,6 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "harness/FrameCsv.h"
 
 namespace fs = std::filesystem;
@@ -159,6 +161,11 @@ TEST(Shards, GnuParallelShardsMergedEqualTheUnshardedRun) {
             0);
   EXPECT_EQ(answers(merged / "frames.csv"), answers(whole / "frames.csv"));
   EXPECT_TRUE(fs::exists(merged / "meta.json"));
+  // The merged meta.json records the culling options in effect, as one run's does.
+  std::ifstream mergedMeta(merged / "meta.json"), wholeMeta(whole / "meta.json");
+  const auto mergedCulling = nlohmann::json::parse(mergedMeta)["config"]["culling"];
+  EXPECT_TRUE(mergedCulling.is_object());
+  EXPECT_EQ(mergedCulling, nlohmann::json::parse(wholeMeta)["config"]["culling"]);
 
   // Two shards only: the merge names what is missing and writes nothing.
   const auto partial = base / "partial";

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "ConfigErrorCheck.h"
 #include "ScratchDir.h"
 #include "TestAssets.h"
 #include "core/Errors.h"
@@ -15,39 +16,10 @@
 namespace cdb {
 namespace {
 
+using test::ConfigErrors;
+using test::kTori;
+using test::minimal;
 using test::ScratchDir;
-
-// One body group that is valid on its own, on one line so tests know every line number.
-constexpr std::string_view kTori =
-    "  - {name: tori, mesh: {kind: torus}, count: 3, "
-    "placement: {region_min: [-5, -5, -5], region_max: [5, 5, 5]}}\n";
-
-std::string minimal() { return "environment: test\nbodies:\n" + std::string(kTori); }
-
-class ConfigErrors : public testing::Test {
- protected:
-  // The message of loading `yaml`, checked to be one line that starts `<file>:<line>: <key>: `
-  // and says `expected <expected>`.
-  void expectError(std::string_view yaml, int line, std::string_view key,
-                   std::string_view expected) {
-    const auto file = dir_.write("scenario.yaml", yaml);
-    const std::string prefix =
-        file.string() + ":" + std::to_string(line) + ": " + std::string(key) + ": expected ";
-    try {
-      (void)loadScenarioConfig(file);
-      ADD_FAILURE() << "no error for:\n" << yaml;
-    } catch (const InputError& e) {
-      const std::string message = e.what();
-      EXPECT_EQ(message.rfind(prefix, 0), 0u) << "want prefix: " << prefix << "\n got: " << message;
-      EXPECT_NE(message.find(expected), std::string::npos)
-          << "want: " << expected << "\n got: " << message;
-      EXPECT_NE(message.find(", got "), std::string::npos) << message;
-      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
-  }
-
-  ScratchDir dir_;
-};
 
 TEST(ConfigLoader, ReadsEveryKey) {
   ScratchDir dir;
@@ -99,10 +71,12 @@ sweep:
   repeats: 2
   strategies: [ours, cullide]
 culling:
-  conservative: false
-  raw_depth_offset: 0.001
-  leaf_triangles: 4
-  bvh_offset: 0.01
+  visibility: {backend: cpu, conservative: false, raw_depth_offset: 0.001, threads: 3}
+  hierarchy: {branching: 4, leaf_triangles: 4, offset: 0.01}
+  strategies:
+    cis: {axis: z}
+    cullide_bvh: {hierarchy: {branching: 2, leaf_triangles: 6, offset: 0.02}}
+    ours: {first_axis: y, hierarchy: {branching: 8, leaf_triangles: 5, offset: 0.03}}
 )");
   const ScenarioConfig c = loadScenarioConfig(file);
   EXPECT_EQ(c.sourcePath, file.string());
@@ -168,10 +142,20 @@ culling:
   EXPECT_EQ(c.sweep.objectCounts, (std::vector<int>{10, 20, 30}));
   EXPECT_EQ(c.sweep.repeats, 2);
   EXPECT_EQ(c.sweep.strategies, (std::vector<std::string>{"ours", "cullide"}));
-  EXPECT_FALSE(c.culling.conservative);
-  EXPECT_EQ(c.culling.rawDepthOffset, 0.001);
-  EXPECT_EQ(c.culling.leafTriangles, 4);
-  EXPECT_EQ(c.culling.bvhOffset, 0.01);
+  EXPECT_EQ(c.culling.visibility.backend, "cpu");
+  EXPECT_FALSE(c.culling.visibility.conservative);
+  EXPECT_EQ(c.culling.visibility.rawDepthOffset, 0.001);
+  EXPECT_EQ(c.culling.visibility.threads, 3);
+  EXPECT_EQ(c.culling.strategies.cis.axis, 2);
+  const HierarchySpec& bvh = c.culling.strategies.cullideBvh.hierarchy;
+  EXPECT_EQ(bvh.branching, 2);
+  EXPECT_EQ(bvh.leafTriangles, 6);
+  EXPECT_EQ(bvh.offset, 0.02);
+  EXPECT_EQ(c.culling.strategies.ours.firstAxis, 1);
+  const HierarchySpec& ours = c.culling.strategies.ours.hierarchy;
+  EXPECT_EQ(ours.branching, 8);
+  EXPECT_EQ(ours.leafTriangles, 5);
+  EXPECT_EQ(ours.offset, 0.03);
 }
 
 TEST(ConfigLoader, AbsentKeysKeepTheDocumentedDefaults) {
@@ -184,7 +168,7 @@ TEST(ConfigLoader, AbsentKeysKeepTheDocumentedDefaults) {
   EXPECT_EQ(c.dynamics.frames, defaults.dynamics.frames);
   EXPECT_EQ(c.sweep.resolutions, defaults.sweep.resolutions);
   EXPECT_EQ(c.sweep.strategies, defaults.sweep.strategies);
-  EXPECT_EQ(c.culling.conservative, defaults.culling.conservative);
+  EXPECT_EQ(c.culling.visibility.conservative, defaults.culling.visibility.conservative);
   ASSERT_EQ(c.bodies.size(), 1u);
   EXPECT_EQ(c.bodies[0].mesh.rings, 20);
   EXPECT_EQ(c.bodies[0].count, 3);
@@ -246,7 +230,8 @@ TEST_F(ConfigErrors, WrongTypeEmptyValue) {
 }
 
 TEST_F(ConfigErrors, WrongTypeBoolean) {
-  expectError(minimal() + "culling: {conservative: maybe}\n", 4, "culling.conservative",
+  expectError(minimal() + "culling: {visibility: {conservative: maybe}}\n", 4,
+              "culling.visibility.conservative",
               "true or false, got 'maybe'");
 }
 

@@ -114,7 +114,7 @@ TEST(PoseRecording, FingerprintCoversWhatDeterminesFramesOnly) {
   same.description = "another description";
   same.sweep.resolutions = {500, 600};
   same.sweep.repeats = 10;
-  same.culling.conservative = false;
+  same.culling.visibility.conservative = false;
   same.seed = 99;  // the seed travels beside the fingerprint
   same.sourcePath = "elsewhere.yaml";
   EXPECT_EQ(scenarioFingerprint(same, scene), f);
