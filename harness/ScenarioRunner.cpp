@@ -1,9 +1,8 @@
 #include "harness/ScenarioRunner.h"
 
 #include <chrono>
-#include <cstdio>
 #include <fstream>
-#include <iostream>
+#include <memory>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -11,24 +10,19 @@
 #include "core/Errors.h"
 #include "core/Fnv1a.h"
 #include "culling/StrategyRegistry.h"
-#include "culling/exact/ExactPhase.h"
-#include "culling/exact/GroundTruth.h"
+#include "culling/visibility/BackendResources.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/AtomicFile.h"
-#include "harness/BackendWarmUp.h"
+#include "harness/CellFrames.h"
+#include "harness/CellMeasurement.h"
 #include "harness/CellStore.h"
-#include "harness/CullingSpecJson.h"
 #include "harness/InterruptFlag.h"
 #include "harness/ProgressBar.h"
+#include "harness/RunMeta.h"
 #include "harness/RunOutputs.h"
 #include "harness/RunPlan.h"
-#include "harness/MachineInfo.h"
-#include "harness/TruthComparison.h"
-#include "render/HeadlessGlContext.h"
 #include "scenes/AssetPath.h"
 #include "scenes/ConfigLoader.h"
-#include "scenes/PoseRecording.h"
-#include "scenes/SceneBuilder.h"
 
 namespace cdb {
 
@@ -37,12 +31,6 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point t0, Clock::time_point t1) {
   return std::chrono::duration<double, std::milli>(t1 - t0).count();
-}
-
-int movingBodies(const SceneGeometry& scene) {
-  int n = 0;
-  for (const auto& o : scene.objects) n += o.fixed ? 0 : 1;
-  return n;
 }
 
 std::string readWholeFile(const std::filesystem::path& file) {
@@ -124,43 +112,12 @@ std::uint64_t identityHash(const ScenarioConfig& config, const RunOptions& optio
   return h.value();
 }
 
-// The recording of a cell's (object count, repeat): replayed from --replay, reused from the run
-// folder when an earlier invocation simulated it, else simulated now and kept there.
-PoseRecording framesFor(const Cell& cell, const ScenarioConfig& cfg, const SceneGeometry& scene,
-                        const RunOptions& options, const CellStore& store) {
-  const std::uint64_t fingerprint = scenarioFingerprint(cfg, scene);
-  if (options.replayFile) {
-    PoseRecording r = readPoseRecording(*options.replayFile);
-    if (r.fingerprint != fingerprint || r.objectCount != scene.objectCount())
-      throw InputError(options.replayFile->string() +
-                       ": recording was made from another config (fingerprint or object count differs)");
-    if (r.frameCount() == 0) throw InputError(options.replayFile->string() + ": holds no frame");
-    return r;
-  }
-  const auto kept = store.recordingPath(cell);
-  const std::uint64_t seed = cfg.seed + static_cast<std::uint64_t>(cell.repeat);
-  if (std::filesystem::exists(kept)) {
-    try {
-      PoseRecording r = readPoseRecording(kept);
-      if (r.fingerprint == fingerprint && r.seed == seed &&
-          r.frameCount() == static_cast<std::uint32_t>(cfg.dynamics.frames))
-        return r;
-    } catch (const InputError&) {
-      // A damaged leftover is simulated again below.
-    }
-  }
-  PoseRecording r = recordSimulation(cfg, scene, seed);
-  writePoseRecording(r, kept);
-  return r;
-}
-
 }  // namespace
 
 RunSummary runScenario(const RunOptions& options) {
   const auto runStart = Clock::now();
   const ScenarioConfig config = effectiveConfig(options);
   const Shard shard = options.shard ? parseShard(*options.shard) : Shard{};
-  const auto assetDirs = assetSearchPath(options.assetDirs);
   const std::string configText = readWholeFile(options.configPath);
 
   const std::vector<Cell> plan = planCells(config);
@@ -168,19 +125,17 @@ RunSummary runScenario(const RunOptions& options) {
                        options.configPath.string(), configText, {}};
   for (const auto& c : plan) identity.plan.push_back(c.key());
 
-
   BackendResources resources(parseGlPlatform(options.glPlatform));
-  const std::unique_ptr<VisibilityBackend> backendOwner = VisibilityBackendRegistry::builtin().create(
+  const std::unique_ptr<VisibilityBackend> backend = VisibilityBackendRegistry::builtin().create(
       config.culling.visibility.backend, resources, visibilityOptionsOf(config.culling));
-  VisibilityBackend& backend = *backendOwner;
   for (int r : config.sweep.resolutions)
-    if (r > backend.maxResolution())
+    if (r > backend->maxResolution())
       throw InputError("resolution " + std::to_string(r) + ": above the largest framebuffer the " +
                        config.culling.visibility.backend + " backend renders (" +
-                       std::to_string(backend.maxResolution()) + " pixels, " + backend.renderer() + ")");
+                       std::to_string(backend->maxResolution()) + " pixels, " +
+                       backend->renderer() + ")");
   const CellStore store(options.outDir, identity);
   RunSummary summary;
-  WallTimeBreakdown& time = summary.time;
   std::vector<Cell> todo;
   for (const auto& c : shareOf(plan, shard)) {
     if (store.done(c))
@@ -189,141 +144,43 @@ RunSummary runScenario(const RunOptions& options) {
       todo.push_back(c);
   }
 
-  const auto& registry = StrategyRegistry::builtin();
   StrategyOptions strategyOptions;
   strategyOptions.culling = config.culling;
-
   installInterruptHandlers();
   ProgressBar progress(todo.size(),
                        static_cast<std::size_t>((config.dynamics.frames + options.frameStride - 1) /
                                                 options.frameStride),
                        !options.quiet);
+  const auto afterEachFrame = [&] {
+    progress.frameDone();
+    if (interruptRequested()) {
+      progress.finish();
+      throw RunInterrupted{interruptSignal(), summary.cellsSkipped + summary.cellsRun};
+    }
+  };
 
-  std::optional<int> sceneCount;
-  std::optional<ScenarioConfig> cfg;
-  std::optional<SceneGeometry> scene;
-  std::optional<GroundTruth> truth;
-  std::optional<ExactPhase> exact;
-  PoseRecording recording;
-  std::vector<std::vector<ObjectPair>> truthPairs;
-  const Cell* framesOf = nullptr;
-  int objects = 0;
-  const auto stride = static_cast<std::uint32_t>(options.frameStride);
-  std::vector<std::uint32_t> measured;  // frame indices timed in every cell of this simulation
-
+  CellFrames frames(config, options, store, assetSearchPath(options.assetDirs), *backend,
+                    summary.time);
   for (const Cell& cell : todo) {
-    if (!sceneCount || *sceneCount != cell.objectCount) {
-      const auto t0 = Clock::now();
-      sceneCount = cell.objectCount;
-      cfg = cell.objectCount < 0 ? config : withObjectCount(config, cell.objectCount);
-      exact.reset();
-      truth.reset();
-      scene = buildScene(*cfg, assetDirs);
-      objects = movingBodies(*scene);
-      exact.emplace(*scene);
-      backend.attachScene(*scene);
-      framesOf = nullptr;
-      const auto t1 = Clock::now();
-      if (options.groundTruth) truth.emplace(*scene);
-      time.setupSeconds += msSince(t0, t1) / 1e3;
-      time.truthSeconds += msSince(t1, Clock::now()) / 1e3;
-    }
-    if (!framesOf || !framesOf->sameFrames(cell)) {
-      framesOf = &cell;
-      {
-        const ScopedSeconds timed(time.simulationSeconds);
-        recording = framesFor(cell, *cfg, *scene, options, store);
-      }
-      if (options.recordFile) writePoseRecording(recording, *options.recordFile);
-      measured.clear();
-      for (std::uint32_t f = 0; f < recording.frameCount(); f += stride) measured.push_back(f);
-      truthPairs.assign(recording.frameCount(), {});
-      const ScopedSeconds timed(time.truthSeconds);
-      if (truth)
-        for (std::uint32_t f : measured) truthPairs[f] = truth->compute(recording.frame(f)).collidingPairs;
-    }
-
-    progress.startCell(cfg->environment + " " + cell.strategy + " objects=" + std::to_string(objects) +
-                       " repeat=" + std::to_string(cell.repeat) + " res=" +
-                       std::to_string(cell.resolution));
-    strategyOptions.resolution = cell.resolution;
-    std::unique_ptr<CollisionDetector> detector;
-    {
-      const ScopedSeconds timed(time.setupSeconds);
-      detector = registry.createDetector(cell.strategy, strategyOptions, backend, *exact);
-      detector->attach(*scene);
-      // Shader compilation and framebuffer allocation at this resolution are not CD time.
-      warmUpBackend(backend, *scene, recording.frame(0), cell.resolution);
-    }
-
-    std::vector<FrameRecord> rows;
-    for (std::uint32_t f : measured) {
-      const auto poses = recording.frame(f);
-      const DetectedFrame detected = detector->detect({poses, static_cast<int>(f)});
-      const CullingCounters counters = detected.cullingCounters();
-      const CollisionReport& report = detected.report;
-      time.cdSeconds += detected.cdMs() / 1e3;
-
-      FrameRecord r;
-      r.environment = cfg->environment;
-      r.strategy = cell.strategy;
-      r.visibility = config.culling.visibility.backend;
-      r.resolution = cell.resolution;
-      r.objects = objects;
-      r.repeat = cell.repeat;
-      r.frame = static_cast<int>(f);
-      r.cullMs = detected.cullMs;
-      r.exactMs = detected.exactMs;
-      r.cdMs = detected.cdMs();
-      r.pcsSize = counters.pcsSize;
-      r.sets = counters.sets;
-      r.pcsTriangles = counters.pcsTriangles;
-      r.pairsTested = report.pairsTested;
-      r.triangleTests = report.triangleTests;
-      r.collidingPairs = report.collidingPairs.size();
-      r.queries = counters.visibility.queries;
-      r.draws = counters.visibility.draws;
-      r.trianglesDrawn = counters.visibility.trianglesDrawn;
-      r.pixelsTested = counters.visibility.pixelsTested;
-      r.pixelsWritten = counters.visibility.pixelsWritten;
-      if (truth) {
-        const ScopedSeconds timed(time.truthSeconds);
-        const auto cmp = compareWithTruth(truthPairs[f], detected, scene->objectCount());
-        r.truthPairs = truthPairs[f].size();
-        r.falseNegatives = cmp.falseNegatives;
-        r.falsePositives = cmp.falsePositives;
-        r.cullingMisses = cmp.cullingMisses;
-        summary.falseNegatives += cmp.falseNegatives;
-        summary.falsePositives += cmp.falsePositives;
-      }
-      rows.push_back(std::move(r));
-      progress.frameDone();
-      if (interruptRequested()) {
-        progress.finish();
-        throw RunInterrupted{interruptSignal(), summary.cellsSkipped + summary.cellsRun};
-      }
+    frames.prepare(cell);
+    progress.startCell(config.environment + " " + cell.strategy + " objects=" +
+                       std::to_string(frames.movingObjects()) + " repeat=" +
+                       std::to_string(cell.repeat) + " res=" + std::to_string(cell.resolution));
+    const auto rows =
+        measureCell(cell, frames, strategyOptions, *backend, summary.time, afterEachFrame);
+    for (const auto& r : rows) {
+      summary.falseNegatives += r.falseNegatives;
+      summary.falsePositives += r.falsePositives;
     }
     store.save(cell, rows);
     ++summary.cellsRun;
     progress.cellDone();
   }
   progress.finish();
-  time.wallSeconds = msSince(runStart, Clock::now()) / 1e3;
+  summary.time.wallSeconds = msSince(runStart, Clock::now()) / 1e3;
 
-  nlohmann::json shardMeta;
-  shardMeta["shard"] = std::to_string(shard.index) + "/" + std::to_string(shard.count);
-  shardMeta["created_utc"] = utcTimestamp();
-  shardMeta["command_line"] = options.commandLine;
-  shardMeta["machine"] = toJson(probeMachine());
-  shardMeta["visibility"] = {{"backend", config.culling.visibility.backend},
-                             {"description", VisibilityBackendRegistry::builtin().description(
-                                                  config.culling.visibility.backend)},
-                             {"renderer", backend.renderer()},
-                             {"threads", config.culling.visibility.threads}};
-  shardMeta["culling"] = toJson(config.culling);
-  // GL is opened only by backends that need it; a run on the CPU backend records none.
-  if (const HeadlessGlContext* gl = resources.openedGl()) shardMeta["gl"] = toJson(gl->info());
-  shardMeta["wall_time"] = time.toJson();
+  const nlohmann::json shardMeta =
+      shardMetaJson(shard, options, config, *backend, resources, summary.time);
   writeFileAtomically(options.outDir /
                           ("shard-" + std::to_string(shard.index) + "-of-" +
                            std::to_string(shard.count) + ".json"),
@@ -333,33 +190,7 @@ RunSummary runScenario(const RunOptions& options) {
     if (!store.done(c)) return summary;  // other shards still to come: `cdbench merge` joins them
 
   const auto rows = store.load(plan);
-  nlohmann::json meta;
-  meta["cdbench_version"] = CDBENCH_VERSION;  // CMake's project version
-  meta["created_utc"] = utcTimestamp();
-  meta["command_line"] = options.commandLine;
-  meta["machine"] = shardMeta["machine"];
-  meta["visibility"] = shardMeta["visibility"];
-  if (shardMeta.contains("gl")) meta["gl"] = shardMeta["gl"];
-  meta["shards"] = nlohmann::json::array({shardMeta});
-  meta["config"] = {{"path", options.configPath.string()},
-                    {"environment", config.environment},
-                    {"seed", config.seed},
-                    {"frames", config.dynamics.frames},
-                    {"frame_stride", options.frameStride},
-                    {"repeats", config.sweep.repeats},
-                    {"resolutions", config.sweep.resolutions},
-                    {"object_counts", config.sweep.objectCounts},
-                    {"strategies", config.sweep.strategies},
-                    {"conservative", config.culling.visibility.conservative},
-                    {"visibility", config.culling.visibility.backend},
-                    {"threads", config.culling.visibility.threads},
-                    {"culling", shardMeta["culling"]},
-                    {"ground_truth", options.groundTruth},
-                    {"text", configText}};
-  meta["commit"] = meta["machine"]["git_commit"];
-  meta["summary"] = frameTotals(rows);
-  meta["summary"]["cells"] = plan.size();
-  meta["summary"]["complete"] = true;
+  const nlohmann::json meta = runMetaJson(shardMeta, options, config, configText, rows, plan.size());
   writeRunOutputs(options.outDir, rows, meta);
   summary.frameRows = rows.size();
   summary.complete = true;

@@ -1,0 +1,74 @@
+#include "harness/CellMeasurement.h"
+
+#include <memory>
+
+#include "harness/BackendWarmUp.h"
+#include "harness/TruthComparison.h"
+
+namespace cdb {
+
+FrameRecord frameRecordOf(const Cell& cell, const CellFrames& frames, const std::string& visibility,
+                          std::uint32_t frame, const DetectedFrame& detected) {
+  const CullingCounters counters = detected.cullingCounters();
+  const CollisionReport& report = detected.report;
+  FrameRecord r;
+  r.environment = frames.config().environment;
+  r.strategy = cell.strategy;
+  r.visibility = visibility;
+  r.resolution = cell.resolution;
+  r.objects = frames.movingObjects();
+  r.repeat = cell.repeat;
+  r.frame = static_cast<int>(frame);
+  r.cullMs = detected.cullMs;
+  r.exactMs = detected.exactMs;
+  r.cdMs = detected.cdMs();
+  r.pcsSize = counters.pcsSize;
+  r.sets = counters.sets;
+  r.pcsTriangles = counters.pcsTriangles;
+  r.pairsTested = report.pairsTested;
+  r.triangleTests = report.triangleTests;
+  r.collidingPairs = report.collidingPairs.size();
+  r.queries = counters.visibility.queries;
+  r.draws = counters.visibility.draws;
+  r.trianglesDrawn = counters.visibility.trianglesDrawn;
+  r.pixelsTested = counters.visibility.pixelsTested;
+  r.pixelsWritten = counters.visibility.pixelsWritten;
+  return r;
+}
+
+std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames, StrategyOptions options,
+                                     VisibilityBackend& backend, WallTimeBreakdown& time,
+                                     const std::function<void()>& afterEachFrame) {
+  options.resolution = cell.resolution;
+  std::unique_ptr<CollisionDetector> detector;
+  {
+    const ScopedSeconds timed(time.setupSeconds);
+    detector = StrategyRegistry::builtin().createDetector(cell.strategy, options, backend,
+                                                          frames.exact());
+    detector->attach(frames.scene());
+    // Shader compilation and framebuffer allocation at this resolution are not CD time.
+    warmUpBackend(backend, frames.scene(), frames.recording().frame(0), cell.resolution);
+  }
+
+  std::vector<FrameRecord> rows;
+  for (std::uint32_t f : frames.measuredFrames()) {
+    const DetectedFrame detected =
+        detector->detect({frames.recording().frame(f), static_cast<int>(f)});
+    time.cdSeconds += detected.cdMs() / 1e3;
+    FrameRecord r = frameRecordOf(cell, frames, options.culling.visibility.backend, f, detected);
+    if (frames.hasTruth()) {
+      const ScopedSeconds timed(time.truthSeconds);
+      const auto& truth = frames.truthPairs(f);
+      const auto cmp = compareWithTruth(truth, detected, frames.scene().objectCount());
+      r.truthPairs = truth.size();
+      r.falseNegatives = cmp.falseNegatives;
+      r.falsePositives = cmp.falsePositives;
+      r.cullingMisses = cmp.cullingMisses;
+    }
+    rows.push_back(std::move(r));
+    afterEachFrame();
+  }
+  return rows;
+}
+
+}  // namespace cdb

@@ -1,0 +1,32 @@
+#pragma once
+// One cell measured: its detector created, attached and the backend warmed up at the cell's
+// resolution (none of it CD time), then every measured frame of the cell's simulation detected,
+// timed and compared with the ground truth, one frames.csv row each.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "culling/CollisionDetector.h"
+#include "culling/StrategyRegistry.h"
+#include "culling/visibility/VisibilityBackend.h"
+#include "harness/CellFrames.h"
+#include "harness/FrameRecord.h"
+#include "harness/RunPlan.h"
+#include "harness/WallTimeBreakdown.h"
+
+namespace cdb {
+
+// `frames` must hold the cell's scene and frames (CellFrames::prepare); `afterEachFrame` runs after
+// every row (progress, and stopping between frames by throwing).
+[[nodiscard]] std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames,
+                                                   StrategyOptions options,
+                                                   VisibilityBackend& backend,
+                                                   WallTimeBreakdown& time,
+                                                   const std::function<void()>& afterEachFrame);
+
+// The row of one detected frame: where each column's value comes from.
+[[nodiscard]] FrameRecord frameRecordOf(const Cell& cell, const CellFrames& frames,
+                                        const std::string& visibility, std::uint32_t frame,
+                                        const DetectedFrame& detected);
+
+}  // namespace cdb
