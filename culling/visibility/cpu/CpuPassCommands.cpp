@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <span>
-#include <vector>
 
 namespace cdb {
 
@@ -14,48 +13,9 @@ namespace {
 // cost is shared.
 constexpr std::size_t kChunk = 64;
 
-// Screen positions of a mesh's vertices under one matrix, each computed on first use: a vertex
-// of a closed mesh is shared by about six triangles, and the test and the write of one piece in a
-// pass use the same matrix. The same double arithmetic as transforming per triangle, so the same
-// positions. One per worker thread, emptied at the start of every pass (a mesh freed and another
-// allocated at its address in a later scene must not find old positions).
-class ScreenVertexCache {
- public:
-  void reset() { bump(); mesh_ = nullptr; }
-  void use(const Mesh& mesh, const ScreenMatrix& toScreen) {
-    if (&mesh == mesh_ && toScreen == matrix_) return;
-    mesh_ = &mesh, matrix_ = toScreen;
-    if (stamp_.size() < mesh.vertices.size()) {
-      stamp_.resize(mesh.vertices.size(), 0);
-      positions_.resize(mesh.vertices.size());
-    }
-    bump();
-  }
-  const Eigen::Vector3d& at(std::uint32_t v) {
-    if (stamp_[v] != generation_) {
-      positions_[v] = matrix_.leftCols<3>() * mesh_->vertices[v].cast<double>() + matrix_.col(3);
-      stamp_[v] = generation_;
-    }
-    return positions_[v];
-  }
-
- private:
-  void bump() {
-    if (++generation_ == 0) {  // wrapped: no stamp may look current
-      std::fill(stamp_.begin(), stamp_.end(), 0u);
-      generation_ = 1;
-    }
-  }
-  const Mesh* mesh_ = nullptr;
-  ScreenMatrix matrix_ = ScreenMatrix::Zero();
-  std::vector<Eigen::Vector3d> positions_;
-  std::vector<std::uint32_t> stamp_;
-  std::uint32_t generation_ = 1;
-};
-
-ScreenVertexCache& vertexCacheOfThisThread() {
-  thread_local ScreenVertexCache cache;
-  return cache;
+inline void toScreen(const ScreenMatrix& m, const Eigen::Vector3f& v, ScreenTriangle& t, int i) {
+  const Eigen::Vector3d p = m.leftCols<3>() * v.cast<double>() + m.col(3);
+  t.x[i] = p.x(), t.y[i] = p.y(), t.k[i] = p.z();
 }
 
 // The unit cube [-1, 1]^3 (corner i has x, y, z = bits 0, 1, 2) as two triangles per face;
@@ -119,8 +79,6 @@ inline bool drawnForRole(const ScreenTriangle& t, std::int8_t winding, CpuComman
 std::size_t fillChunk(const CpuCommandList& list, const CpuCommand& c, std::uint32_t& done,
                       std::array<ScreenTriangle, kChunk>& chunk) {
   const Mesh& mesh = *c.mesh;
-  ScreenVertexCache& vertices = vertexCacheOfThisThread();
-  vertices.use(mesh, c.toScreen);
   const std::uint32_t n = std::min<std::uint32_t>(kChunk, c.count - done);
   std::size_t kept = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -128,12 +86,8 @@ std::size_t fillChunk(const CpuCommandList& list, const CpuCommand& c, std::uint
                                   ? c.first + done + i
                                   : list.listed[c.first + done + i];
     const Triangle& t = mesh.triangles[tri];
-    ScreenTriangle& out = chunk[kept];
-    for (int v = 0; v < 3; ++v) {
-      const Eigen::Vector3d& p = vertices.at(t[v]);
-      out.x[v] = p.x(), out.y[v] = p.y(), out.k[v] = p.z();
-    }
-    if (drawnForRole(out, c.winding, c.role)) ++kept;
+    for (int v = 0; v < 3; ++v) toScreen(c.toScreen, mesh.vertices[t[v]], chunk[kept], v);
+    if (drawnForRole(chunk[kept], c.winding, c.role)) ++kept;
   }
   done += n;
   return kept;
@@ -197,7 +151,6 @@ void runWrite(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommand
 void runPass(CpuDepthBuffer& buffer, const CpuPass& pass, const CpuCommandList& list,
              std::uint8_t* answers, RasterWork& work) {
   if (pass.clears) buffer.clear(pass.clearValue);
-  vertexCacheOfThisThread().reset();
   for (std::uint32_t i = pass.firstCommand; i < pass.endCommand; ++i) {
     const CpuCommand& c = list.commands[i];
     if (c.role == CpuCommand::Role::Test)

@@ -232,35 +232,24 @@ bool testSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
 void writeSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
                 RasterWork& work) {
   const float value = pass.sign * r.zLo;
-  // The box spans at most 2 x 2 tiles; each is visited once, its bounds updated once.
-  for (int ty = r.y0 / kTile; ty <= r.y1 / kTile; ++ty)
-    for (int tx = r.x0 / kTile; tx <= r.x1 / kTile; ++tx) {
-      const std::size_t index = buffer.tileIndex(tx, ty);
+  for (int y = r.y0; y <= r.y1; ++y)
+    for (int x = r.x0; x <= r.x1; ++x) {
+      const std::size_t index = buffer.tileIndex(x / kTile, y / kTile);
       if (r.zLo >= tileKeys(buffer, index, pass.sign).farthest) continue;
-      const int cx0 = std::max(r.x0, tx * kTile), cx1 = std::min(r.x1, tx * kTile + kTile - 1);
-      const int ry0 = std::max(r.y0, ty * kTile), ry1 = std::min(r.y1, ty * kTile + kTile - 1);
-      work.pixelsWritten += static_cast<std::uint64_t>((cx1 - cx0 + 1) * (ry1 - ry0 + 1));
+      ++work.pixelsWritten;
       buffer.materialise(index);
-      float* values = buffer.tile(index);
-      // The value only moves the tile's near bound; the far bound can only move when a pixel
-      // that held it is overwritten.
-      const float farBound = pass.sign > 0 ? buffer.tileMax(index) : buffer.tileMin(index);
-      bool changed = false, farOverwritten = false;
-      for (int y = ry0; y <= ry1; ++y)
-        for (int x = cx0; x <= cx1; ++x) {
-          float& at = values[(y % kTile) * kTile + x % kTile];
-          if (!(r.zLo < pass.sign * at)) continue;
-          farOverwritten |= at == farBound;
-          at = value;
-          changed = true;
-        }
-      if (!changed) continue;
-      if (farOverwritten) {
-        refreshBounds(buffer, index);
-      } else if (pass.sign > 0) {
+      float& at = buffer.tile(index)[(y % kTile) * kTile + x % kTile];
+      if (!(r.zLo < pass.sign * at)) continue;
+      const float old = at;
+      at = value;
+      // The value only moves toward the near bound; the far bound can only move when the pixel
+      // held it.
+      if (pass.sign > 0) {
         buffer.tileMin(index) = std::min(buffer.tileMin(index), value);
+        if (old == buffer.tileMax(index)) refreshBounds(buffer, index);
       } else {
         buffer.tileMax(index) = std::max(buffer.tileMax(index), value);
+        if (old == buffer.tileMin(index)) refreshBounds(buffer, index);
       }
     }
 }
