@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/Errors.h"
+#include "harness/CsvText.h"
 
 namespace cdb {
 
@@ -86,11 +87,8 @@ std::vector<FrameRecord> readFrameCsv(const std::filesystem::path& file) {
 
 void writeFrameColumnsCsv(std::ostream& out) {
   out << "column,kind,description\n";
-  for (const auto& column : kFrameColumns) {
-    std::string quoted;
-    for (char c : column.description) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    out << column.name << ',' << kindOf(column.field) << ",\"" << quoted << "\"\n";
-  }
+  for (const auto& column : kFrameColumns)
+    out << column.name << ',' << kindOf(column.field) << ',' << csvQuoted(column.description) << '\n';
 }
 
 }  // namespace cdb

@@ -16,6 +16,7 @@
 #include "harness/RegressionCheck.h"
 #include "harness/RunOptions.h"
 #include "harness/ScenarioRunner.h"
+#include "harness/StrategyListCsv.h"
 #include "render/HeadlessGlContext.h"
 #include "scenes/IntList.h"
 
@@ -78,6 +79,8 @@ int main(int argc, char** argv) {
   info->add_option("--gl", glPlatform, "auto | device | surfaceless")->capture_default_str();
 
   auto* list = app.add_subcommand("strategies", "list the culling strategies");
+  bool listCsv = false;
+  list->add_flag("--csv", listCsv, "as CSV: name, kind (image-based, reference, cpu-peer), description");
   auto* backends = app.add_subcommand("backends", "list the visibility backends");
   auto* frameColumns = app.add_subcommand(
       "frame-columns", "print the columns of frames.csv as CSV: column, kind (string, int, double), description");
@@ -157,6 +160,10 @@ int main(int argc, char** argv) {
     }
     if (*frameColumns) {
       cdb::writeFrameColumnsCsv(std::cout);
+      return 0;
+    }
+    if (*list && listCsv) {
+      cdb::writeStrategiesCsv(std::cout, cdb::StrategyRegistry::builtin());
       return 0;
     }
     if (*list) {

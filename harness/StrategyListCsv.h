@@ -1,0 +1,13 @@
+#pragma once
+// `cdbench strategies --csv`: every registered detector with its kind, for tools that must know
+// them (the report's display order and colours are checked against it).
+#include <ostream>
+
+#include "culling/StrategyRegistry.h"
+
+namespace cdb {
+
+// Columns name, kind (image-based, reference, cpu-peer), description; in registration order.
+void writeStrategiesCsv(std::ostream& out, const StrategyRegistry& registry);
+
+}  // namespace cdb
