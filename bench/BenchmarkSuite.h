@@ -25,7 +25,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/RecordedFrames.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/visibility/VisibilityBackend.h"
 
 namespace cdb::bench {

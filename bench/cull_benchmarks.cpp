@@ -31,8 +31,8 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
   const auto backend = warmedUpBackend(frames.resources(), backendName, recorded.config.culling,
                                        recorded.scene, poses, resolution);
   ExactPhase exact(recorded.scene);
-  auto detector = StrategyRegistry::builtin().createDetector(
-      strategyName, StrategyOptions{resolution, recorded.config.culling}, *backend, exact);
+  auto detector = DetectorRegistry::builtin().createDetector(
+      strategyName, DetectorOptions{resolution, recorded.config.culling}, *backend, exact);
   detector->attach(recorded.scene);
   (void)detector->detect({poses, frame});
 
@@ -66,11 +66,11 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
 
 void registerCullBenchmarks(RecordedFrames& frames) {
   for (const MeasuredFrame& m : frames.frames())
-    for (const std::string& strategy : StrategyRegistry::builtin().names()) {
+    for (const std::string& strategy : DetectorRegistry::builtin().names()) {
       // A CPU peer or a reference uses no backend: one entry, on the default one (it draws
       // nothing on it).
       const std::vector<std::string> backends =
-          !StrategyRegistry::builtin().usesBackend(strategy) ? std::vector<std::string>{"-"} : frames.backends();
+          !DetectorRegistry::builtin().usesBackend(strategy) ? std::vector<std::string>{"-"} : frames.backends();
       for (const std::string& backend : backends)
         for (int resolution : kResolutions) {
           const std::string runsOn =

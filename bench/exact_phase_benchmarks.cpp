@@ -37,7 +37,7 @@ const PotentiallyCollidingSets& oursSets(RecordedFrames& frames, const std::stri
   backend.attachScene(recorded.scene);
   warmUpBackend(backend, recorded.scene, input.poses, kSetsResolution);
   auto ours =
-      StrategyRegistry::builtin().create("ours", StrategyOptions{kSetsResolution, recorded.config.culling});
+      DetectorRegistry::builtin().create("ours", DetectorOptions{kSetsResolution, recorded.config.culling});
   ours->attach(recorded.scene, backend);
   (void)ours->cull(input);  // the sets of a strategy that has seen a frame before, as timed
   return kept.emplace(environment, ours->cull(input).sets).first->second;
@@ -47,7 +47,7 @@ const PotentiallyCollidingSets& oursSets(RecordedFrames& frames, const std::stri
 PotentiallyCollidingSets allPairsSets(RecordedFrames& frames, const std::string& environment) {
   const RecordedScene& recorded = frames.recorded(environment);
   auto reference =
-      StrategyRegistry::builtin().create("all_pairs", StrategyOptions{kSetsResolution, recorded.config.culling});
+      DetectorRegistry::builtin().create("all_pairs", DetectorOptions{kSetsResolution, recorded.config.culling});
   const auto backend = VisibilityBackendRegistry::builtin().create(
       backendNameOf(recorded.config.culling), frames.resources(), {});
   reference->attach(recorded.scene, *backend);

@@ -42,8 +42,8 @@ void replayRecordedCull(benchmark::State& state, RecordedFrames& frames,
 
 void registerFloorBenchmarks(RecordedFrames& frames) {
   for (const MeasuredFrame& m : frames.frames())
-    for (const std::string& strategy : StrategyRegistry::builtin().names()) {
-      if (!StrategyRegistry::builtin().usesBackend(strategy)) continue;
+    for (const std::string& strategy : DetectorRegistry::builtin().names()) {
+      if (!DetectorRegistry::builtin().usesBackend(strategy)) continue;
       for (const std::string& backend : frames.backends())
         for (int resolution : kResolutions)
           registerMilliseconds(cellName("floor", m.environment, strategy, backend, resolution),

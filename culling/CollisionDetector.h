@@ -2,7 +2,7 @@
 // What the harness times: a detector takes a frame of poses and answers the colliding pairs. An
 // image-based detector (culling/ImageBasedDetector) is a culling strategy, a visibility backend
 // and the exact phase; a CPU peer (culling/peers) is a detector by itself. Detectors are created
-// by name from the StrategyRegistry, attached once to a scene, then called once per frame.
+// by name from the DetectorRegistry, attached once to a scene, then called once per frame.
 #include <optional>
 #include <string_view>
 

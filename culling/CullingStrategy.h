@@ -1,6 +1,6 @@
 #pragma once
 // A culling strategy: a frame of poses in, potentially colliding sets and counters out, for the
-// exact phase to test. A strategy is created by name from the StrategyRegistry, attached once to a
+// exact phase to test. A strategy is created by name from the DetectorRegistry, attached once to a
 // scene and a visibility backend, then called once per frame; the harness times it inside an
 // ImageBasedDetector (culling/CollisionDetector.h).
 #include <cstdint>

@@ -36,14 +36,14 @@ FrameRecord frameRecordOf(const Cell& cell, const CellFrames& frames, const std:
   return r;
 }
 
-std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames, StrategyOptions options,
+std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames, DetectorOptions options,
                                      VisibilityBackend& backend, WallTimeBreakdown& time,
                                      const std::function<void()>& afterEachFrame) {
   options.resolution = cell.resolution;
   std::unique_ptr<CollisionDetector> detector;
   {
     const ScopedSeconds timed(time.setupSeconds);
-    detector = StrategyRegistry::builtin().createDetector(cell.strategy, options, backend,
+    detector = DetectorRegistry::builtin().createDetector(cell.strategy, options, backend,
                                                           frames.exact());
     detector->attach(frames.scene());
     // Shader compilation and framebuffer allocation at this resolution are not CD time.

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "culling/CollisionDetector.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/visibility/VisibilityBackend.h"
 #include "harness/CellFrames.h"
 #include "harness/FrameRecord.h"
@@ -19,7 +19,7 @@ namespace cdb {
 // `frames` must hold the cell's scene and frames (CellFrames::prepare); `afterEachFrame` runs after
 // every row (progress, and stopping between frames by throwing).
 [[nodiscard]] std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames,
-                                                   StrategyOptions options,
+                                                   DetectorOptions options,
                                                    VisibilityBackend& backend,
                                                    WallTimeBreakdown& time,
                                                    const std::function<void()>& afterEachFrame);

@@ -11,7 +11,7 @@ std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const 
                                              bool withPeers, CheckScenes& scenes,
                                              const std::vector<CorrectnessCase>& cases,
                                              const std::vector<std::string>& strategies,
-                                             const StrategyRegistry& registry) {
+                                             const DetectorRegistry& registry) {
   std::vector<CorrectnessRow> rows;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
@@ -36,7 +36,7 @@ std::vector<CorrectnessRow> checkCorrectness(BackendResources& resources, const 
       if (drawsNothing && !withPeers) continue;
       for (int resolution : c.resolutions) {
         auto detector = registry.createDetector(
-            name, StrategyOptions{resolution, recorded.config.culling}, *backend, exact);
+            name, DetectorOptions{resolution, recorded.config.culling}, *backend, exact);
         detector->attach(scene);
         warmUpBackend(*backend, scene, recorded.recording.frame(0), resolution);
         for (std::size_t i = 0; i < c.frames.size(); ++i) {

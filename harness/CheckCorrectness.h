@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "harness/CheckPlan.h"
 #include "harness/CheckScenes.h"
 #include "harness/TruthComparison.h"
@@ -40,6 +40,6 @@ struct CorrectnessRow {
                                                            CheckScenes& scenes,
                                                            const std::vector<CorrectnessCase>& cases,
                                                            const std::vector<std::string>& strategies,
-                                                           const StrategyRegistry& registry);
+                                                           const DetectorRegistry& registry);
 
 }  // namespace cdb

@@ -36,7 +36,7 @@ RatioMeasurement medianRound(std::vector<TimedRound> rounds, const std::string& 
 std::vector<RatioMeasurement> measureSpeedups(BackendResources& resources, const std::string& backendName,
                                               CheckScenes& scenes,
                                               const std::vector<SpeedupCase>& cases,
-                                              const StrategyRegistry& registry) {
+                                              const DetectorRegistry& registry) {
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
     const RecordedScene& recorded = scenes.get(c.scene);
@@ -44,7 +44,7 @@ std::vector<RatioMeasurement> measureSpeedups(BackendResources& resources, const
     const auto owned = warmedUpBackend(resources, backendName, recorded.config.culling,
                                        recorded.scene, poses, c.resolution);
     VisibilityBackend& backend = *owned;
-    const StrategyOptions options{c.resolution, recorded.config.culling};
+    const DetectorOptions options{c.resolution, recorded.config.culling};
     auto slow = registry.create(c.baseline, options);
     auto fast = registry.create(c.strategy, options);
     slow->attach(recorded.scene, backend);
@@ -70,7 +70,7 @@ std::vector<RatioMeasurement> measureSpeedups(BackendResources& resources, const
 std::vector<RatioMeasurement> measureFloors(BackendResources& resources, const std::string& backend,
                                             CheckScenes& scenes, const std::vector<FloorCase>& cases,
                                             const std::vector<std::string>& strategies,
-                                            const StrategyRegistry& registry,
+                                            const DetectorRegistry& registry,
                                             std::vector<std::string>& withoutFloor) {
   std::vector<RatioMeasurement> out;
   for (const auto& c : cases) {
@@ -82,7 +82,7 @@ std::vector<RatioMeasurement> measureFloors(BackendResources& resources, const s
           withoutFloor.push_back(name);
       };
       // A CPU peer has no culling strategy, so no backend work.
-      if (registry.kind(name) == StrategyRegistry::Kind::CpuPeer) {
+      if (registry.kind(name) == DetectorRegistry::Kind::CpuPeer) {
         noFloor();
         continue;
       }

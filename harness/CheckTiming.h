@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "harness/CheckPlan.h"
 #include "harness/CheckScenes.h"
 #include "culling/visibility/BackendResources.h"
@@ -36,7 +36,7 @@ struct RatioMeasurement {
                                                             const std::string& backend,
                                                             CheckScenes& scenes,
                                                             const std::vector<SpeedupCase>& cases,
-                                                            const StrategyRegistry& registry);
+                                                            const DetectorRegistry& registry);
 
 // Each floor case for each of `strategies` that issues backend work, on `backend`: its work
 // recorded from one cull and prepared for replay on the backend's floor (FloorSetup), one untimed
@@ -48,7 +48,7 @@ struct RatioMeasurement {
                                                           CheckScenes& scenes,
                                                           const std::vector<FloorCase>& cases,
                                                           const std::vector<std::string>& strategies,
-                                                          const StrategyRegistry& registry,
+                                                          const DetectorRegistry& registry,
                                                           std::vector<std::string>& withoutFloor);
 
 }  // namespace cdb

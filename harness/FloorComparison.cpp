@@ -18,11 +18,11 @@ double secondsOf(F&& work) {
 
 // A new `name` on `backend` that has culled `frame` once, so that a strategy keeping state across
 // frames (sorted lists, hierarchies) meets the frame as it would in a run.
-std::unique_ptr<CullingStrategy> strategyAfterOneCull(const StrategyRegistry& registry,
+std::unique_ptr<CullingStrategy> strategyAfterOneCull(const DetectorRegistry& registry,
                                                       const std::string& name,
                                                       const RecordedScene& recorded, int resolution,
                                                       VisibilityBackend& backend, int frame) {
-  auto strategy = registry.create(name, StrategyOptions{resolution, recorded.config.culling});
+  auto strategy = registry.create(name, DetectorOptions{resolution, recorded.config.culling});
   strategy->attach(recorded.scene, backend);
   (void)strategy->cull({recordedPoses(recorded, frame), frame});
   return strategy;
@@ -32,7 +32,7 @@ std::unique_ptr<CullingStrategy> strategyAfterOneCull(const StrategyRegistry& re
 
 VisibilityCounters recordCullWork(RecordingBackend& recorder, const RecordedScene& recorded,
                                   const std::string& strategyName, int resolution, int frame,
-                                  const StrategyRegistry& registry) {
+                                  const DetectorRegistry& registry) {
   const auto poses = recordedPoses(recorded, frame);
   const auto strategy =
       strategyAfterOneCull(registry, strategyName, recorded, resolution, recorder, frame);
@@ -45,7 +45,7 @@ VisibilityCounters recordCullWork(RecordingBackend& recorder, const RecordedScen
 
 FloorSetup::FloorSetup(BackendResources& resources, const std::string& backend,
                        const RecordedScene& recorded, const std::string& strategy, int resolution,
-                       int frame, const StrategyRegistry& registry)
+                       int frame, const DetectorRegistry& registry)
     : recorded_(recorded), frame_(frame) {
   backend_ = warmedUpBackend(resources, backend, recorded.config.culling, recorded.scene,
                              recordedPoses(recorded, frame), resolution);
@@ -83,7 +83,7 @@ FloorSetup::Round FloorSetup::timeRound(bool floorFirst) {
 FloorComparison compareWithFloor(BackendResources& resources, const std::string& backend,
                                  const RecordedScene& recorded, const std::string& strategyName,
                                  int resolution, int frame, int repeats,
-                                 const StrategyRegistry& registry) {
+                                 const DetectorRegistry& registry) {
   repeats = std::max(repeats, 1);
   FloorSetup setup(resources, backend, recorded, strategyName, resolution, frame, registry);
   FloorComparison c;

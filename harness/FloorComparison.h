@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/visibility/BackendFloor.h"
 #include "culling/visibility/RecordingBackend.h"
 #include "culling/visibility/VisibilityBackend.h"
@@ -30,7 +30,7 @@ struct FloorComparison {
 // Returns that backend's counters of the recorded cull.
 VisibilityCounters recordCullWork(RecordingBackend& recorder, const RecordedScene& recorded,
                                   const std::string& strategy, int resolution, int frame,
-                                  const StrategyRegistry& registry = StrategyRegistry::builtin());
+                                  const DetectorRegistry& registry = DetectorRegistry::builtin());
 
 // A strategy on a backend and that backend's floor, ready to be timed in turn: the backend warmed
 // up, the strategy attached with the recorded cull's history (one cull done), the recorded work
@@ -41,7 +41,7 @@ class FloorSetup {
   // (tests pass one with a deliberately slowed or faulty strategy).
   FloorSetup(BackendResources& resources, const std::string& backend, const RecordedScene& recorded,
              const std::string& strategy, int resolution, int frame,
-             const StrategyRegistry& registry = StrategyRegistry::builtin());
+             const DetectorRegistry& registry = DetectorRegistry::builtin());
 
   // One cull of the frame on the bare backend, in seconds.
   double timeCull();
@@ -79,6 +79,6 @@ class FloorSetup {
                                                const RecordedScene& recorded,
                                                const std::string& strategy, int resolution,
                                                int frame, int repeats = 3,
-                                               const StrategyRegistry& registry = StrategyRegistry::builtin());
+                                               const DetectorRegistry& registry = DetectorRegistry::builtin());
 
 }  // namespace cdb

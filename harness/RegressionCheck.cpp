@@ -112,7 +112,7 @@ void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const Mach
 }  // namespace
 
 CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& plan,
-                               const StrategyRegistry& registry) {
+                               const DetectorRegistry& registry) {
   const auto start = CheckClock::now();
   CheckReport report;
   report.baselineFile = options.baselineFile;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "harness/CheckCorrectness.h"
 #include "harness/CheckPlan.h"
 #include "harness/CheckTiming.h"
@@ -74,7 +74,7 @@ struct CheckReport {
 // RunError (no GL, an unwritable baseline).
 [[nodiscard]] CheckReport runRegressionCheck(const CheckOptions& options,
                                              const CheckPlan& plan = defaultCheckPlan(),
-                                             const StrategyRegistry& registry = StrategyRegistry::builtin());
+                                             const DetectorRegistry& registry = DetectorRegistry::builtin());
 
 // The report as tables: each correctness row and each ratio with measured, baseline, allowed and
 // the verdict, then the notes and a summary line.

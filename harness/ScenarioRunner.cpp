@@ -9,7 +9,7 @@
 
 #include "core/Errors.h"
 #include "core/Fnv1a.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/visibility/BackendResources.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/AtomicFile.h"
@@ -70,7 +70,7 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
     throw InputError("--threads " + std::to_string(visibility.threads) + ": expected 0..1024 (0 = every core)");
 
   try {
-    StrategyRegistry::builtin().validate(config.sweep.strategies);
+    DetectorRegistry::builtin().validate(config.sweep.strategies);
   } catch (const InputError& e) {
     if (options.strategies) throw;
     throw InputError(options.configPath.string() + ": sweep.strategies: " + e.what());
@@ -144,7 +144,7 @@ RunSummary runScenario(const RunOptions& options) {
       todo.push_back(c);
   }
 
-  StrategyOptions strategyOptions;
+  DetectorOptions strategyOptions;
   strategyOptions.culling = config.culling;
   installInterruptHandlers();
   ProgressBar progress(todo.size(),

@@ -6,18 +6,18 @@ namespace cdb {
 
 namespace {
 
-const char* kindName(StrategyRegistry::Kind kind) {
+const char* kindName(DetectorRegistry::Kind kind) {
   switch (kind) {
-    case StrategyRegistry::Kind::ImageBased: return "image-based";
-    case StrategyRegistry::Kind::Reference: return "reference";
-    case StrategyRegistry::Kind::CpuPeer: return "cpu-peer";
+    case DetectorRegistry::Kind::ImageBased: return "image-based";
+    case DetectorRegistry::Kind::Reference: return "reference";
+    case DetectorRegistry::Kind::CpuPeer: return "cpu-peer";
   }
   return "unknown";
 }
 
 }  // namespace
 
-void writeStrategiesCsv(std::ostream& out, const StrategyRegistry& registry) {
+void writeStrategiesCsv(std::ostream& out, const DetectorRegistry& registry) {
   out << "name,kind,description\n";
   for (const auto& name : registry.names())
     out << name << ',' << kindName(registry.kind(name)) << ',' << csvQuoted(registry.description(name))

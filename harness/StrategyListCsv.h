@@ -3,11 +3,11 @@
 // them (the report's display order and colours are checked against it).
 #include <ostream>
 
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 
 namespace cdb {
 
 // Columns name, kind (image-based, reference, cpu-peer), description; in registration order.
-void writeStrategiesCsv(std::ostream& out, const StrategyRegistry& registry);
+void writeStrategiesCsv(std::ostream& out, const DetectorRegistry& registry);
 
 }  // namespace cdb

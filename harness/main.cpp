@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "core/Errors.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/FrameCsv.h"
 #include "harness/MergeRuns.h"
@@ -163,15 +163,15 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*list && listCsv) {
-      cdb::writeStrategiesCsv(std::cout, cdb::StrategyRegistry::builtin());
+      cdb::writeStrategiesCsv(std::cout, cdb::DetectorRegistry::builtin());
       return 0;
     }
     if (*list) {
-      const auto names = cdb::StrategyRegistry::builtin().names();
+      const auto names = cdb::DetectorRegistry::builtin().names();
       int width = 0;
       for (const auto& name : names) width = std::max(width, static_cast<int>(name.size()));
       for (const auto& name : names)
-        std::printf("%-*s %s\n", width, name.c_str(), cdb::StrategyRegistry::builtin().description(name).c_str());
+        std::printf("%-*s %s\n", width, name.c_str(), cdb::DetectorRegistry::builtin().description(name).c_str());
       return 0;
     }
     if (*checkCmd) {

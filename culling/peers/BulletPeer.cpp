@@ -93,7 +93,7 @@ struct BulletPeer::Impl {
   std::vector<std::unique_ptr<btCollisionObject>> objects;
 };
 
-BulletPeer::BulletPeer(const StrategyOptions&) {}
+BulletPeer::BulletPeer(const DetectorOptions&) {}
 
 BulletPeer::~BulletPeer() = default;
 

@@ -5,13 +5,13 @@
 #include <memory>
 
 #include "culling/peers/CpuPeer.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 
 namespace cdb {
 
 class BulletPeer final : public CpuPeer {
  public:
-  explicit BulletPeer(const StrategyOptions& options);
+  explicit BulletPeer(const DetectorOptions& options);
   ~BulletPeer() override;
 
   [[nodiscard]] std::string_view name() const override { return "bullet"; }

@@ -65,7 +65,7 @@ struct FclPeer::Impl {
   FrameState state;
 };
 
-FclPeer::FclPeer(const StrategyOptions&) {}
+FclPeer::FclPeer(const DetectorOptions&) {}
 
 FclPeer::~FclPeer() = default;
 

@@ -4,13 +4,13 @@
 #include <memory>
 
 #include "culling/peers/CpuPeer.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 
 namespace cdb {
 
 class FclPeer final : public CpuPeer {
  public:
-  explicit FclPeer(const StrategyOptions& options);
+  explicit FclPeer(const DetectorOptions& options);
   ~FclPeer() override;
 
   [[nodiscard]] std::string_view name() const override { return "fcl"; }

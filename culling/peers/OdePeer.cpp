@@ -75,7 +75,7 @@ struct OdePeer::Impl {
   std::uint64_t pairsTested = 0;
 };
 
-OdePeer::OdePeer(const StrategyOptions&) {}
+OdePeer::OdePeer(const DetectorOptions&) {}
 
 OdePeer::~OdePeer() = default;
 

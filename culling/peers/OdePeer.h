@@ -6,13 +6,13 @@
 #include <memory>
 
 #include "culling/peers/CpuPeer.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 
 namespace cdb {
 
 class OdePeer final : public CpuPeer {
  public:
-  explicit OdePeer(const StrategyOptions& options);
+  explicit OdePeer(const DetectorOptions& options);
   ~OdePeer() override;
 
   [[nodiscard]] std::string_view name() const override { return "ode"; }

@@ -5,13 +5,13 @@
 // broad phases of other libraries are the same reference (Jolt's BroadPhaseBruteForce, FCL's
 // NaiveCollisionManager).
 #include "culling/CullingStrategy.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 
 namespace cdb {
 
 class AllPairs final : public CullingStrategy {
  public:
-  explicit AllPairs(const StrategyOptions& /*options*/) {}
+  explicit AllPairs(const DetectorOptions& /*options*/) {}
   [[nodiscard]] std::string_view name() const override { return "all_pairs"; }
   // The backend is not used: nothing is drawn.
   void attach(const SceneGeometry& scene, VisibilityBackend& backend) override;

@@ -7,7 +7,7 @@
 
 namespace cdb {
 
-CollisionIndependentSets::CollisionIndependentSets(const StrategyOptions& options, CisOptions cis)
+CollisionIndependentSets::CollisionIndependentSets(const DetectorOptions& options, CisOptions cis)
     : options_(options), config_(cis) {}
 
 void CollisionIndependentSets::attach(const SceneGeometry& scene, VisibilityBackend& backend) {

@@ -10,7 +10,7 @@
 #include "culling/CisConstruction.h"
 #include "culling/CullingStrategy.h"
 #include "culling/SortedIntervals.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/WorldBounds.h"
 #include "scenes/CullingSpec.h"
 
@@ -18,7 +18,7 @@ namespace cdb {
 
 class CollisionIndependentSets final : public CullingStrategy {
  public:
-  explicit CollisionIndependentSets(const StrategyOptions& options, CisOptions cis = {});
+  explicit CollisionIndependentSets(const DetectorOptions& options, CisOptions cis = {});
 
   [[nodiscard]] std::string_view name() const override { return "cis"; }
   void attach(const SceneGeometry& scene, VisibilityBackend& backend) override;
@@ -39,7 +39,7 @@ class CollisionIndependentSets final : public CullingStrategy {
   [[nodiscard]] const FrameStats& lastFrame() const { return stats_; }
 
  private:
-  StrategyOptions options_;
+  DetectorOptions options_;
   CisOptions config_;
   const SceneGeometry* scene_ = nullptr;
   VisibilityBackend* backend_ = nullptr;

@@ -4,7 +4,7 @@
 
 namespace cdb {
 
-Cullide::Cullide(const StrategyOptions& options) : options_(options) {}
+Cullide::Cullide(const DetectorOptions& options) : options_(options) {}
 
 void Cullide::attach(const SceneGeometry& scene, VisibilityBackend& backend) {
   scene_ = &scene;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "culling/CullingStrategy.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/TwoPassPruning.h"
 #include "culling/WorldBounds.h"
 
@@ -15,7 +15,7 @@ namespace cdb {
 
 class Cullide final : public CullingStrategy {
  public:
-  explicit Cullide(const StrategyOptions& options);
+  explicit Cullide(const DetectorOptions& options);
 
   [[nodiscard]] std::string_view name() const override { return "cullide"; }
   void attach(const SceneGeometry& scene, VisibilityBackend& backend) override;
@@ -25,7 +25,7 @@ class Cullide final : public CullingStrategy {
   void pruneObjects(std::vector<ObjectId>& pcs, const Eigen::Vector3d& axis);
   void pruneTriangles(std::vector<SetMember>& members, const Eigen::Vector3d& axis);
 
-  StrategyOptions options_;
+  DetectorOptions options_;
   const SceneGeometry* scene_ = nullptr;
   VisibilityBackend* backend_ = nullptr;
   WorldBounds bounds_;

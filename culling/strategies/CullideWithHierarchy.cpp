@@ -6,7 +6,7 @@
 
 namespace cdb {
 
-CullideWithHierarchy::CullideWithHierarchy(const StrategyOptions& options,
+CullideWithHierarchy::CullideWithHierarchy(const DetectorOptions& options,
                                            CullideWithHierarchyOptions config)
     : options_(options), config_(config) {}
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "culling/CullingStrategy.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/bvh/NodeFrontier.h"
 #include "culling/bvh/SceneHierarchies.h"
 #include "scenes/CullingSpec.h"
@@ -20,7 +20,7 @@ namespace cdb {
 
 class CullideWithHierarchy final : public CullingStrategy {
  public:
-  explicit CullideWithHierarchy(const StrategyOptions& options,
+  explicit CullideWithHierarchy(const DetectorOptions& options,
                                 CullideWithHierarchyOptions config = {});
 
   [[nodiscard]] std::string_view name() const override { return "cullide_bvh"; }
@@ -31,7 +31,7 @@ class CullideWithHierarchy final : public CullingStrategy {
   // The two passes along one axis over the objects' active nodes; prunes nodes and objects.
   void pruneAlong(std::vector<ObjectId>& objects, int axis, std::span<const Pose> poses);
 
-  StrategyOptions options_;
+  DetectorOptions options_;
   CullideWithHierarchyOptions config_;
   const SceneGeometry* scene_ = nullptr;
   VisibilityBackend* backend_ = nullptr;

@@ -5,7 +5,7 @@
 namespace cdb {
 
 
-DepthSortedCulling::DepthSortedCulling(const StrategyOptions& options) : options_(options) {}
+DepthSortedCulling::DepthSortedCulling(const DetectorOptions& options) : options_(options) {}
 
 void DepthSortedCulling::attach(const SceneGeometry& scene, VisibilityBackend& backend) {
   scene_ = &scene;

@@ -15,7 +15,7 @@
 
 #include "culling/CullingStrategy.h"
 #include "culling/SortedIntervals.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/TwoPassPruning.h"
 #include "culling/WorldBounds.h"
 
@@ -23,7 +23,7 @@ namespace cdb {
 
 class DepthSortedCulling final : public CullingStrategy {
  public:
-  explicit DepthSortedCulling(const StrategyOptions& options);
+  explicit DepthSortedCulling(const DetectorOptions& options);
 
   [[nodiscard]] std::string_view name() const override { return "sorted"; }
   void attach(const SceneGeometry& scene, VisibilityBackend& backend) override;
@@ -40,7 +40,7 @@ class DepthSortedCulling final : public CullingStrategy {
   void pruneTriangles(std::vector<SetMember>& members, int axis);
   [[nodiscard]] ViewSpec viewAlong(int axis, const Aabb& bounds) const;
 
-  StrategyOptions options_;
+  DetectorOptions options_;
   const SceneGeometry* scene_ = nullptr;
   VisibilityBackend* backend_ = nullptr;
   WorldBounds bounds_;

@@ -34,7 +34,7 @@ bool HierarchicalCollisionIndependentSets::ListKey::operator<(const ListKey& o) 
 }
 
 HierarchicalCollisionIndependentSets::HierarchicalCollisionIndependentSets(
-    const StrategyOptions& options, HierarchicalCisOptions config)
+    const DetectorOptions& options, HierarchicalCisOptions config)
     : options_(options), config_(config) {}
 
 void HierarchicalCollisionIndependentSets::attach(const SceneGeometry& scene,

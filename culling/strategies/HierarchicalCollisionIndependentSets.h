@@ -22,7 +22,7 @@
 #include "culling/CisConstruction.h"
 #include "culling/CullingStrategy.h"
 #include "culling/SortedIntervals.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/WorldBounds.h"
 #include "culling/bvh/NodeFrontier.h"
 #include "culling/bvh/SceneHierarchies.h"
@@ -32,7 +32,7 @@ namespace cdb {
 
 class HierarchicalCollisionIndependentSets final : public CullingStrategy {
  public:
-  explicit HierarchicalCollisionIndependentSets(const StrategyOptions& options,
+  explicit HierarchicalCollisionIndependentSets(const DetectorOptions& options,
                                                 HierarchicalCisOptions config = {});
 
   [[nodiscard]] std::string_view name() const override { return "ours"; }
@@ -83,7 +83,7 @@ class HierarchicalCollisionIndependentSets final : public CullingStrategy {
   [[nodiscard]] bool nodeVisible(const SetRun& run, int pass, std::uint32_t slot,
                                  std::size_t k) const;
 
-  StrategyOptions options_;
+  DetectorOptions options_;
   HierarchicalCisOptions config_;
   const SceneGeometry* scene_ = nullptr;
   VisibilityBackend* backend_ = nullptr;

@@ -13,7 +13,7 @@ constexpr std::uint8_t kVisibleSecond = 2;
 
 }  // namespace
 
-QuickCullide::QuickCullide(const StrategyOptions& options) : options_(options) {}
+QuickCullide::QuickCullide(const DetectorOptions& options) : options_(options) {}
 
 void QuickCullide::attach(const SceneGeometry& scene, VisibilityBackend& backend) {
   scene_ = &scene;

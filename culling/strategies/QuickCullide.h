@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "culling/CullingStrategy.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/TwoPassPruning.h"
 #include "culling/WorldBounds.h"
 
@@ -19,7 +19,7 @@ namespace cdb {
 
 class QuickCullide final : public CullingStrategy {
  public:
-  explicit QuickCullide(const StrategyOptions& options);
+  explicit QuickCullide(const DetectorOptions& options);
 
   [[nodiscard]] std::string_view name() const override { return "quick_cullide"; }
   void attach(const SceneGeometry& scene, VisibilityBackend& backend) override;
@@ -47,7 +47,7 @@ class QuickCullide final : public CullingStrategy {
   [[nodiscard]] std::vector<SetMember> drawnTriangles() const;
   [[nodiscard]] CullingResult result(const VisibilityCounters& work) const;
 
-  StrategyOptions options_;
+  DetectorOptions options_;
   const SceneGeometry* scene_ = nullptr;
   VisibilityBackend* backend_ = nullptr;
   WorldBounds bounds_;

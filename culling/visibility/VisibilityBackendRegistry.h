@@ -1,5 +1,5 @@
 #pragma once
-// Visibility backends by name, as StrategyRegistry holds strategies: every place that needs a
+// Visibility backends by name, as DetectorRegistry holds strategies: every place that needs a
 // backend (runner, check, floor comparison, benchmarks, tests) creates it through here, so a new
 // backend is one class plus one entry in VisibilityBackendRegistry.cpp.
 #include <functional>

@@ -72,7 +72,7 @@ TEST(CisOracle, WorkedExampleOfFigures37To316) {
     const std::set<ObjectId> hidden2 = {O(2), O(3), O(5)};
     return !(q.pass == 0 ? hidden1 : hidden2).count(q.object);
   });
-  CollisionIndependentSets cis(StrategyOptions{}, CisOptions{2});
+  CollisionIndependentSets cis(DetectorOptions{}, CisOptions{2});
   cis.attach(s.scene, oracle);
   const auto result = cis.cull({s.poses, 0});
 
@@ -116,7 +116,7 @@ TEST(CisOracle, WorkedExampleOfFigures37To316) {
 TEST(CisOracle, FullyVisibleInPassOneEverywhereLeavesNothingToTestInPassTwo) {
   auto s = figure37();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
-  CollisionIndependentSets cis(StrategyOptions{}, CisOptions{2});
+  CollisionIndependentSets cis(DetectorOptions{}, CisOptions{2});
   cis.attach(s.scene, oracle);
   const auto result = cis.cull({s.poses, 0});
   EXPECT_TRUE(result.sets.empty());
@@ -130,7 +130,7 @@ TEST(CisOracle, SetsEndAtGapsAlongTheAxisAndSingletonsAreDropped) {
   auto s = testing::boxScene({box(0, 1, 0, 1, 0, 2), box(0, 1, 0, 1, 1, 3), box(0, 1, 0, 1, 5, 7),
                               box(0, 1, 0, 1, 6, 8), box(0, 1, 0, 1, 10, 11)});
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
-  CollisionIndependentSets cis(StrategyOptions{}, CisOptions{2});
+  CollisionIndependentSets cis(DetectorOptions{}, CisOptions{2});
   cis.attach(s.scene, oracle);
   const auto result = cis.cull({s.poses, 0});
   EXPECT_EQ(setsOf(result), (std::vector<std::vector<ObjectId>>{{2, 3}, {0, 1}}));
@@ -144,7 +144,7 @@ TEST(CisOracle, ViewAxisIsWhereTheCentresSpreadMostUnlessFixed) {
   auto s = testing::boxScene(boxes);
   for (const std::optional<int> fixed : {std::optional<int>{}, std::optional<int>{0}}) {
     ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
-    CollisionIndependentSets cis(StrategyOptions{}, CisOptions{fixed});
+    CollisionIndependentSets cis(DetectorOptions{}, CisOptions{fixed});
     cis.attach(s.scene, oracle);
     (void)cis.cull({s.poses, 0});
     const int expected = fixed.value_or(1);
@@ -165,7 +165,7 @@ TEST(CisOracle, NeverSplitsOrDropsATouchingPairOnRandomBoxes) {
     std::uniform_real_distribution<double> half(0.2, 0.8);  // the second frame's moves
     auto s = testing::boxScene(boxes);
     testing::GeometricOracle g(s.scene);
-    CollisionIndependentSets cis(StrategyOptions{});
+    CollisionIndependentSets cis(DetectorOptions{});
     cis.attach(s.scene, g.backend());
     std::vector<std::uint32_t> all(12);
     for (std::uint32_t t = 0; t < 12; ++t) all[t] = t;

@@ -25,7 +25,7 @@ TEST(CullideOracle, EverythingFullyVisibleEmptiesThePcsAfterTheFirstAxis) {
   const auto scene = threeTori();
   const auto poses = spreadPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
-  Cullide cullide(StrategyOptions{});
+  Cullide cullide(DetectorOptions{});
   cullide.attach(scene, oracle);
   const auto result = cullide.cull({poses, 0});
   EXPECT_TRUE(result.sets.empty());
@@ -42,7 +42,7 @@ TEST(CullideOracle, NothingVisibleKeepsEveryObjectAndTriangleThroughAllAxesAndLe
   const auto scene = threeTori();
   const auto poses = spreadPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
-  Cullide cullide(StrategyOptions{});
+  Cullide cullide(DetectorOptions{});
   cullide.attach(scene, oracle);
   const auto result = cullide.cull({poses, 0});
   ASSERT_EQ(result.sets.size(), 1u);
@@ -72,7 +72,7 @@ TEST(CullideOracle, AnObjectIsPrunedOnlyWhenFullyVisibleInBothPasses) {
     if (q.object == 2) return passInAxis == 0;
     return true;
   });
-  Cullide cullide(StrategyOptions{});
+  Cullide cullide(DetectorOptions{});
   cullide.attach(scene, oracle);
   const auto result = cullide.cull({poses, 0});
   ASSERT_EQ(result.sets.size(), 1u);
@@ -89,7 +89,7 @@ TEST(CullideOracle, TrianglesVisibleInBothPassesLeaveTheSet) {
     if (q.range.triangleCount != 1) return false;
     return !(q.object == 1 && q.range.firstTriangle % 2 == 0);
   });
-  Cullide cullide(StrategyOptions{});
+  Cullide cullide(DetectorOptions{});
   cullide.attach(scene, oracle);
   const auto result = cullide.cull({poses, 0});
   // Objects 0 and 2 lose all their triangles in the first triangle-level axis; object 1 is then

@@ -19,7 +19,7 @@
 #include <tuple>
 
 #include "core/Errors.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/visibility/GlFlagBackend.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 #include "culling/visibility/RecordingBackend.h"
@@ -132,10 +132,10 @@ TEST_P(FlagBackendEquivalence, SameAnswerToEveryQuery) {
   GlOcclusionQueryBackend queries(shared.context, options);
   RecordingBackend recorder(queries);
   recorder.attachScene(recorded->scene);
-  StrategyOptions so;
+  DetectorOptions so;
   so.resolution = resolution;
   so.culling = recorded->config.culling;
-  auto strategy = StrategyRegistry::builtin().create(strategyName, so);
+  auto strategy = DetectorRegistry::builtin().create(strategyName, so);
   strategy->attach(recorded->scene, recorder);
   (void)strategy->cull({poses, f.frame});
   std::size_t recordedAnswers = 0;
@@ -185,9 +185,9 @@ TEST_P(FlagBackendEquivalence, SameAnswerToEveryQuery) {
 std::vector<RecordedCase> recordedCases() {
   std::vector<RecordedCase> out;
   for (int f = 0; f < static_cast<int>(std::size(kFrames)); ++f)
-    for (const auto& name : StrategyRegistry::builtin().names())
+    for (const auto& name : DetectorRegistry::builtin().names())
       // The CPU peers are detectors by themselves: no culling strategy to record.
-      if (StrategyRegistry::builtin().kind(name) != StrategyRegistry::Kind::CpuPeer)
+      if (DetectorRegistry::builtin().kind(name) != DetectorRegistry::Kind::CpuPeer)
         for (int resolution : {64, 256, 800})
           if (resolution < 800 || kFrames[f].scene.config != "env2.yaml")
             out.emplace_back(f, name, resolution);

@@ -125,7 +125,7 @@ void expectObjectsDrawnAsGroups(const ScriptedVisibilityOracle& oracle) {
 TEST(CullideBvhOracle, NothingVisibleWalksEveryLevelAlongXYZAndKeepsEverything) {
   auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
-  CullideWithHierarchy strategy(StrategyOptions{}, {withLeaves(2)});
+  CullideWithHierarchy strategy(DetectorOptions{}, {withLeaves(2)});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
 
@@ -184,7 +184,7 @@ TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
     const std::uint32_t n = nodeOf(*hierarchy, q.box);
     return n != 0 && !inSubtree(tree, n, kept);
   });
-  CullideWithHierarchy strategy(StrategyOptions{}, {leaves});
+  CullideWithHierarchy strategy(DetectorOptions{}, {leaves});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
 
@@ -210,7 +210,7 @@ TEST(CullideBvhOracle, PrunedNodesAreNotExpandedAndTheLeavesTrianglesComeOut) {
 TEST(CullideBvhOracle, EverythingFullyVisibleEndsAfterTheFirstAxis) {
   auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
-  CullideWithHierarchy strategy(StrategyOptions{}, {withLeaves(2)});
+  CullideWithHierarchy strategy(DetectorOptions{}, {withLeaves(2)});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
   EXPECT_TRUE(result.sets.empty());
@@ -225,7 +225,7 @@ TEST(CullideBvhOracle, AnObjectLeftAloneCollidesWithNothing) {
   auto s = threeToriWithPoses();
   // Object 1 is hidden in every pass, the others fully visible: it is left alone.
   ScriptedVisibilityOracle oracle([](const VisibilityCall& q, auto) { return q.object != 1; });
-  CullideWithHierarchy strategy(StrategyOptions{}, {withLeaves(2)});
+  CullideWithHierarchy strategy(DetectorOptions{}, {withLeaves(2)});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
   EXPECT_TRUE(result.sets.empty());
@@ -237,7 +237,7 @@ TEST(CullideBvhOracle, AnObjectLeftAloneCollidesWithNothing) {
 TEST(OursOracle, EachLevelLooksAlongTheNextAxisWithOnePassPairPerSet) {
   auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
-  HierarchicalCollisionIndependentSets strategy(StrategyOptions{}, {1, withLeaves(2)});
+  HierarchicalCollisionIndependentSets strategy(DetectorOptions{}, {1, withLeaves(2)});
   strategy.attach(s.scene, oracle);
   const auto result = strategy.cull({s.poses, 0});
 
@@ -264,7 +264,7 @@ TEST(OursOracle, EachLevelLooksAlongTheNextAxisWithOnePassPairPerSet) {
 TEST(OursOracle, FirstObjectOfAPassIsNotQueriedAndTheLastNotWritten) {
   auto s = threeToriWithPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
-  HierarchicalCollisionIndependentSets strategy(StrategyOptions{}, {0, withLeaves(2)});
+  HierarchicalCollisionIndependentSets strategy(DetectorOptions{}, {0, withLeaves(2)});
   strategy.attach(s.scene, oracle);
   (void)strategy.cull({s.poses, 0});
 
@@ -317,7 +317,7 @@ TEST(OursOracle, ASetSplitsAtLevelOneAndEachSubsetHasItsOwnPasses) {
   auto s = twoPairs();
   testing::BoxGeometricOracle g;
   // Leaves of one triangle: a box mesh's tree then has three levels.
-  HierarchicalCollisionIndependentSets strategy(StrategyOptions{}, {0, withLeaves(1)});
+  HierarchicalCollisionIndependentSets strategy(DetectorOptions{}, {0, withLeaves(1)});
   strategy.attach(s.scene, g.backend());
   const auto result = strategy.cull({s.poses, 0});
 
@@ -345,7 +345,7 @@ TEST(OursOracle, ASetSplitsAtLevelOneAndEachSubsetHasItsOwnPasses) {
 TEST(OursOracle, SortedListsOfRecurringSetsAreKeptAcrossFrames) {
   auto s = twoPairs();
   testing::BoxGeometricOracle g;
-  HierarchicalCollisionIndependentSets strategy(StrategyOptions{}, {0, withLeaves(2)});
+  HierarchicalCollisionIndependentSets strategy(DetectorOptions{}, {0, withLeaves(2)});
   strategy.attach(s.scene, g.backend());
   (void)strategy.cull({s.poses, 0});
   EXPECT_EQ(strategy.lastFrame().listsKept, 0u);
@@ -428,7 +428,7 @@ void checkRandomScenes() {
     testing::BoxGeometricOracle g;
     Options options;
     options.hierarchy = withLeaves(4);
-    Strategy strategy(StrategyOptions{}, options);
+    Strategy strategy(DetectorOptions{}, options);
     strategy.attach(scene, g.backend());
     for (int frame = 0; frame < 2; ++frame) {
       if (frame == 1)

@@ -9,7 +9,7 @@
 
 #include "RandomScenes.h"
 #include "core/Errors.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/ScriptedVisibilityOracle.h"
@@ -21,7 +21,7 @@ namespace {
 // Pairs a peer decides on each frame of `scene`.
 std::vector<std::vector<ObjectPair>> peerPairs(const std::string& peer,
                                                const testing::RandomScene& scene) {
-  auto detector = StrategyRegistry::builtin().createPeer(peer, {});
+  auto detector = DetectorRegistry::builtin().createPeer(peer, {});
   detector->attach(scene.scene);
   std::vector<std::vector<ObjectPair>> out;
   for (std::size_t f = 0; f < scene.frames.size(); ++f) {
@@ -116,7 +116,7 @@ TEST_P(PeerTest, RandomToriAgreeWithGroundTruth) {
 // Every entry makes a detector of its own name; only the CPU peers make it without a culling
 // strategy, and they never ask the backend they are offered.
 TEST(DetectorRegistry, PeersAreDetectorsWithoutACullingStrategy) {
-  const auto& registry = StrategyRegistry::builtin();
+  const auto& registry = DetectorRegistry::builtin();
   Pose side;
   side.translation = {0.6, 0, 0};
   const auto scene = torusPair(side);
@@ -126,7 +126,7 @@ TEST(DetectorRegistry, PeersAreDetectorsWithoutACullingStrategy) {
   oracle.attachScene(scene.scene);
   std::size_t peers = 0;
   for (const auto& name : registry.names()) {
-    const bool peer = registry.kind(name) == StrategyRegistry::Kind::CpuPeer;
+    const bool peer = registry.kind(name) == DetectorRegistry::Kind::CpuPeer;
     peers += peer;
     if (peer) {
       EXPECT_THROW((void)registry.create(name, {}), InputError) << name;
@@ -143,13 +143,13 @@ TEST(DetectorRegistry, PeersAreDetectorsWithoutACullingStrategy) {
       EXPECT_EQ(oracle.log().size(), asked) << name;
     }
   }
-  EXPECT_EQ(peers, registry.names(StrategyRegistry::Kind::CpuPeer).size());
+  EXPECT_EQ(peers, registry.names(DetectorRegistry::Kind::CpuPeer).size());
   EXPECT_GT(peers, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Peers, PeerTest,
-    ::testing::ValuesIn(StrategyRegistry::builtin().names(StrategyRegistry::Kind::CpuPeer)),
+    ::testing::ValuesIn(DetectorRegistry::builtin().names(DetectorRegistry::Kind::CpuPeer)),
     [](const auto& param) { return param.param; });
 
 }  // namespace

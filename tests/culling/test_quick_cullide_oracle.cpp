@@ -70,9 +70,9 @@ TEST(QuickCullideOracle, ClassificationFreesPairsThatCullidesPcsKeeps) {
   const auto poses = stackedPoses();
   ScriptedVisibilityOracle forCullide([](const VisibilityCall& q, auto) { return scriptedAnswer(q); });
   ScriptedVisibilityOracle forQuick([](const VisibilityCall& q, auto) { return scriptedAnswer(q); });
-  Cullide cullide(StrategyOptions{});
+  Cullide cullide(DetectorOptions{});
   cullide.attach(scene, forCullide);
-  QuickCullide quick(StrategyOptions{});
+  QuickCullide quick(DetectorOptions{});
   quick.attach(scene, forQuick);
   const auto byCullide = cullide.cull({poses, 0});
   const auto byQuick = quick.cull({poses, 0});
@@ -136,9 +136,9 @@ TEST(QuickCullideOracle, RunsCullidesPassesInCullidesOrder) {
   const auto poses = stackedPoses();
   ScriptedVisibilityOracle forCullide([](const VisibilityCall&, auto) { return false; });
   ScriptedVisibilityOracle forQuick([](const VisibilityCall&, auto) { return false; });
-  Cullide cullide(StrategyOptions{});
+  Cullide cullide(DetectorOptions{});
   cullide.attach(scene, forCullide);
-  QuickCullide quick(StrategyOptions{});
+  QuickCullide quick(DetectorOptions{});
   quick.attach(scene, forQuick);
   (void)cullide.cull({poses, 0});
   const auto result = quick.cull({poses, 0});
@@ -165,7 +165,7 @@ TEST(QuickCullideOracle, NothingLeftWhenEveryPieceIsFullyVisible) {
   const auto scene = fourTori();
   const auto poses = stackedPoses();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
-  QuickCullide quick(StrategyOptions{});
+  QuickCullide quick(DetectorOptions{});
   quick.attach(scene, oracle);
   const auto result = quick.cull({poses, 0});
   EXPECT_TRUE(result.sets.empty());
@@ -218,9 +218,9 @@ TEST(QuickCullideOracle, NoFreedPairEverTouchesOnRandomBoxes) {
     const std::vector<Aabb> boxes = testing::randomBoxes(rng, 14, 4.0);
     auto s = testing::boxScene(boxes);
     testing::GeometricOracle forQuick(s.scene), forCullide(s.scene);
-    QuickCullide quick(StrategyOptions{});
+    QuickCullide quick(DetectorOptions{});
     quick.attach(s.scene, forQuick.backend());
-    Cullide cullide(StrategyOptions{});
+    Cullide cullide(DetectorOptions{});
     cullide.attach(s.scene, forCullide.backend());
     const GroundTruth truth(s.scene);
     ExactPhase exact(s.scene);

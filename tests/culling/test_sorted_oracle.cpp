@@ -49,7 +49,7 @@ std::vector<ObjectId> membersOf(const CullingResult& r) {
 TEST(SortedOracle, PassOneFarToNearAlongPlusAxisPassTwoReversedFromTheOtherSideOneClear) {
   auto s = fourBoxes();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
-  DepthSortedCulling sorted(StrategyOptions{});
+  DepthSortedCulling sorted(DetectorOptions{});
   sorted.attach(s.scene, oracle);
   const auto result = sorted.cull({s.poses, 0});
   EXPECT_TRUE(result.sets.empty());
@@ -80,7 +80,7 @@ TEST(SortedOracle, PassOneFarToNearAlongPlusAxisPassTwoReversedFromTheOtherSideO
 TEST(SortedOracle, NothingVisibleRunsEveryAxisAtBothLevelsInDepthOrder) {
   auto s = fourBoxes();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
-  DepthSortedCulling sorted(StrategyOptions{});
+  DepthSortedCulling sorted(DetectorOptions{});
   sorted.attach(s.scene, oracle);
   const auto result = sorted.cull({s.poses, 0});
 
@@ -124,7 +124,7 @@ TEST(SortedOracle, AnObjectIsPrunedOnlyWhenFullyVisibleInBothPasses) {
     if (q.object == 2) return first;
     return true;
   });
-  DepthSortedCulling sorted(StrategyOptions{});
+  DepthSortedCulling sorted(DetectorOptions{});
   sorted.attach(s.scene, oracle);
   const auto result = sorted.cull({s.poses, 0});
   EXPECT_EQ(membersOf(result), (std::vector<ObjectId>{0, 2}));
@@ -135,7 +135,7 @@ TEST(SortedOracle, TheSortedListsFollowTheObjectsAcrossFrames) {
   auto s = testing::boxScene({box(0, 1, 0, 1, 0, 1), box(0.5, 1.5, 0, 1, 0, 1),
                               box(2, 3, 0, 1, 0, 1), box(4, 5, 0, 1, 0, 1)});
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
-  DepthSortedCulling sorted(StrategyOptions{});
+  DepthSortedCulling sorted(DetectorOptions{});
   sorted.attach(s.scene, oracle);
 
   (void)sorted.cull({s.poses, 0});
@@ -195,7 +195,7 @@ TEST(SortedOracle, WorstCaseOfCullideIsPrunedEntirelyAlongEveryAxis) {
     const auto s = cornerScene(shift);
 
     testing::GeometricOracle forSorted(s.scene);
-    DepthSortedCulling sorted(StrategyOptions{});
+    DepthSortedCulling sorted(DetectorOptions{});
     sorted.attach(s.scene, forSorted.backend());
     const auto bySorted = sorted.cull({s.poses, 0});
     EXPECT_TRUE(bySorted.sets.empty());
@@ -203,7 +203,7 @@ TEST(SortedOracle, WorstCaseOfCullideIsPrunedEntirelyAlongEveryAxis) {
     EXPECT_TRUE(hiddenInFirstAxis(forSorted).empty());
 
     testing::GeometricOracle forCullide(s.scene);
-    Cullide cullide(StrategyOptions{});
+    Cullide cullide(DetectorOptions{});
     cullide.attach(s.scene, forCullide.backend());
     (void)cullide.cull({s.poses, 0});
     EXPECT_EQ(hiddenInFirstAxis(forCullide), cullideKeeps[shift]);
@@ -227,7 +227,7 @@ TEST(SortedOracle, KeepsEveryTouchingPairOfTrianglesOnRandomBoxes) {
     std::uniform_real_distribution<double> half(0.2, 0.8);  // the second frame's moves
     auto s = testing::boxScene(boxes);
     testing::GeometricOracle g(s.scene);
-    DepthSortedCulling sorted(StrategyOptions{});
+    DepthSortedCulling sorted(DetectorOptions{});
     sorted.attach(s.scene, g.backend());
     for (int frame = 0; frame < 2; ++frame) {
       if (frame == 1)

@@ -11,7 +11,7 @@
 #include <tuple>
 
 #include "RandomScenes.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
@@ -83,11 +83,11 @@ TEST_P(StrategyAgainstTruth, ConservativeModeLosesNoContact) {
   backend.setOptions({true, 1e-5});
   backend.attachScene(scene->scene);
 
-  StrategyOptions options;
+  DetectorOptions options;
   options.resolution = resolution;
   GroundTruth truth(scene->scene);
   ExactPhase exact(scene->scene);
-  auto detector = StrategyRegistry::builtin().createDetector(name, options, backend, exact);
+  auto detector = DetectorRegistry::builtin().createDetector(name, options, backend, exact);
   detector->attach(scene->scene);
 
   std::size_t truthPairs = 0;
@@ -109,9 +109,9 @@ TEST_P(StrategyAgainstTruth, ConservativeModeLosesNoContact) {
 std::vector<Param> allParams() {
   std::vector<Param> out;
   const std::string firstBackend(VisibilityBackendRegistry::kDefault);
-  for (const auto& name : StrategyRegistry::builtin().names()) {
+  for (const auto& name : DetectorRegistry::builtin().names()) {
     // The CPU peers and the reference draw nothing: no backend, no resolution enters their answer.
-    const bool peer = !StrategyRegistry::builtin().usesBackend(name);
+    const bool peer = !DetectorRegistry::builtin().usesBackend(name);
     for (const auto& backend : VisibilityBackendRegistry::builtin().names()) {
       if (peer && backend != firstBackend) continue;
       const bool oneResolution = peer || backend == "gl-flags";

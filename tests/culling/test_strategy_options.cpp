@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "BoxScenes.h"
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 #include "culling/bvh/SceneHierarchies.h"
 #include "culling/strategies/CollisionIndependentSets.h"
 #include "culling/strategies/HierarchicalCollisionIndependentSets.h"
@@ -43,11 +43,11 @@ Strategy& created(std::unique_ptr<CullingStrategy>& owned) {
   return *strategy;
 }
 
-TEST(StrategyOptions, CisAxisFromTheConfigReachesTheStrategy) {
+TEST(DetectorOptions, CisAxisFromTheConfigReachesTheStrategy) {
   auto s = spreadAlongY();
   for (const auto& [word, axis] : {std::pair<std::string, int>{"x", 0}, {"z", 2}, {"auto", 1}}) {
     const ScenarioConfig config = configWithCulling("  strategies: {cis: {axis: " + word + "}}\n");
-    auto owned = StrategyRegistry::builtin().create("cis", StrategyOptions{64, config.culling});
+    auto owned = DetectorRegistry::builtin().create("cis", DetectorOptions{64, config.culling});
     auto& cis = created<CollisionIndependentSets>(owned);
     ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return true; });
     cis.attach(s.scene, oracle);
@@ -56,12 +56,12 @@ TEST(StrategyOptions, CisAxisFromTheConfigReachesTheStrategy) {
   }
 }
 
-TEST(StrategyOptions, OursFirstAxisFromTheConfigReachesTheStrategy) {
+TEST(DetectorOptions, OursFirstAxisFromTheConfigReachesTheStrategy) {
   auto s = spreadAlongY();
   for (const auto& [word, axis] : {std::pair<std::string, int>{"x", 0}, {"z", 2}, {"auto", 1}}) {
     const ScenarioConfig config =
         configWithCulling("  strategies: {ours: {first_axis: " + word + "}}\n");
-    auto owned = StrategyRegistry::builtin().create("ours", StrategyOptions{64, config.culling});
+    auto owned = DetectorRegistry::builtin().create("ours", DetectorOptions{64, config.culling});
     auto& ours = created<HierarchicalCollisionIndependentSets>(owned);
     // Nothing fully visible: a set survives to the leaves, over several levels, unless the boxes
     // lie apart along the first axis (y) and level 0 leaves no set.
@@ -80,7 +80,7 @@ TEST(StrategyOptions, OursFirstAxisFromTheConfigReachesTheStrategy) {
 // The trees the strategies attach with are those of the options the config gives each: built
 // beforehand under exactly these options, attaching builds none. The boxes are of a size no other
 // test uses, so that no tree of theirs under other options is in the process-wide cache either.
-TEST(StrategyOptions, EachHierarchyStrategyBuildsItsTreesUnderItsConfiguredOptions) {
+TEST(DetectorOptions, EachHierarchyStrategyBuildsItsTreesUnderItsConfiguredOptions) {
   auto s = testing::boxScene({testing::box(0, 1.37, 0, 1.41, 0, 1.43),
                               testing::box(1, 2.37, 0, 1.41, 0, 1.43)});
   const ScenarioConfig config = configWithCulling(
@@ -95,7 +95,7 @@ TEST(StrategyOptions, EachHierarchyStrategyBuildsItsTreesUnderItsConfiguredOptio
   const std::uint64_t before = obbTreeBuilds();
   ScriptedVisibilityOracle oracle([](const VisibilityCall&, auto) { return false; });
   for (const char* name : {"cullide_bvh", "ours"}) {
-    auto strategy = StrategyRegistry::builtin().create(name, StrategyOptions{64, config.culling});
+    auto strategy = DetectorRegistry::builtin().create(name, DetectorOptions{64, config.culling});
     strategy->attach(s.scene, oracle);
     EXPECT_EQ(obbTreeBuilds(), before) << name << " built a tree under other options";
   }

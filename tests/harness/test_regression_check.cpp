@@ -26,19 +26,19 @@ namespace {
 using Wrap = std::function<std::unique_ptr<CullingStrategy>(std::unique_ptr<CullingStrategy>)>;
 
 // The builtin strategies, with `target` wrapped by `wrap`.
-StrategyRegistry registryWith(const std::string& target, Wrap wrap) {
-  StrategyRegistry r;
-  const auto& builtin = StrategyRegistry::builtin();
+DetectorRegistry registryWith(const std::string& target, Wrap wrap) {
+  DetectorRegistry r;
+  const auto& builtin = DetectorRegistry::builtin();
   for (const auto& name : builtin.names()) {
-    if (builtin.kind(name) == StrategyRegistry::Kind::CpuPeer) {
-      r.addPeer(name, builtin.description(name), [name](const StrategyOptions& o) {
-        return StrategyRegistry::builtin().createPeer(name, o);
+    if (builtin.kind(name) == DetectorRegistry::Kind::CpuPeer) {
+      r.addPeer(name, builtin.description(name), [name](const DetectorOptions& o) {
+        return DetectorRegistry::builtin().createPeer(name, o);
       });
       continue;
     }
     r.add(name, builtin.description(name),
-          [name, target, wrap](const StrategyOptions& o) -> std::unique_ptr<CullingStrategy> {
-            auto s = StrategyRegistry::builtin().create(name, o);
+          [name, target, wrap](const DetectorOptions& o) -> std::unique_ptr<CullingStrategy> {
+            auto s = DetectorRegistry::builtin().create(name, o);
             return name == target ? wrap(std::move(s)) : std::move(s);
           },
           builtin.kind(name));

@@ -1,4 +1,4 @@
-#include "culling/StrategyRegistry.h"
+#include "culling/DetectorRegistry.h"
 
 #include <stdexcept>
 
@@ -17,89 +17,89 @@
 
 namespace cdb {
 
-const StrategyRegistry& StrategyRegistry::builtin() {
-  static const StrategyRegistry registry = [] {
-    StrategyRegistry r;
+const DetectorRegistry& DetectorRegistry::builtin() {
+  static const DetectorRegistry registry = [] {
+    DetectorRegistry r;
     r.add("cullide", "CULLIDE without a hierarchy: object then triangle level, two passes, x y z",
-          [](const StrategyOptions& o) { return std::make_unique<Cullide>(o); });
+          [](const DetectorOptions& o) { return std::make_unique<Cullide>(o); });
     r.add("cullide_bvh", "CULLIDE's pruning coarse to fine over each object's 8-ary OBB tree",
-          [](const StrategyOptions& o) {
+          [](const DetectorOptions& o) {
             return std::make_unique<CullideWithHierarchy>(o, o.culling.strategies.cullideBvh);
           });
     r.add("sorted", "CULLIDE's two passes in depth order, one depth clear (thesis 3.2)",
-          [](const StrategyOptions& o) { return std::make_unique<DepthSortedCulling>(o); });
+          [](const DetectorOptions& o) { return std::make_unique<DepthSortedCulling>(o); });
     r.add("cis", "collision-independent sets along one view axis (thesis 3.3, Algorithm 3.2)",
-          [](const StrategyOptions& o) {
+          [](const DetectorOptions& o) {
             return std::make_unique<CollisionIndependentSets>(o, o.culling.strategies.cis);
           });
     r.add("ours", "thesis 3.4: OBB trees, sorting, collision-independent sets, an axis per level",
-          [](const StrategyOptions& o) {
+          [](const DetectorOptions& o) {
             return std::make_unique<HierarchicalCollisionIndependentSets>(
                 o, o.culling.strategies.ours);
           });
     r.add("quick_cullide",
           "Quick-CULLIDE: CULLIDE's passes with each pass' answers kept, pairs freed by either pass",
-          [](const StrategyOptions& o) { return std::make_unique<QuickCullide>(o); });
+          [](const DetectorOptions& o) { return std::make_unique<QuickCullide>(o); });
     r.add("all_pairs", "reference: every object in one set, no culling; the exact phase alone",
-          [](const StrategyOptions& o) { return std::make_unique<AllPairs>(o); }, Kind::Reference);
+          [](const DetectorOptions& o) { return std::make_unique<AllPairs>(o); }, Kind::Reference);
     r.addPeer("fcl", "CPU peer: FCL, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
-              [](const StrategyOptions& o) { return std::make_unique<FclPeer>(o); });
+              [](const DetectorOptions& o) { return std::make_unique<FclPeer>(o); });
     r.addPeer("bullet", "CPU peer: Bullet (double), btDbvtBroadphase, GImpact meshes, margin 0",
-              [](const StrategyOptions& o) { return std::make_unique<BulletPeer>(o); });
+              [](const DetectorOptions& o) { return std::make_unique<BulletPeer>(o); });
     r.addPeer("ode", "CPU peer: ODE, hash space, OPCODE trimesh-trimesh collider",
-              [](const StrategyOptions& o) { return std::make_unique<OdePeer>(o); });
+              [](const DetectorOptions& o) { return std::make_unique<OdePeer>(o); });
     return r;
   }();
   return registry;
 }
 
-void StrategyRegistry::add(std::string name, std::string description, StrategyFactory factory,
+void DetectorRegistry::add(std::string name, std::string description, StrategyFactory factory,
                            Kind kind) {
   if (kind == Kind::CpuPeer) throw std::logic_error("a CPU peer is added with addPeer");
   entries_.push_back({std::move(name), std::move(description), std::move(factory), {}, kind});
 }
 
-void StrategyRegistry::addPeer(std::string name, std::string description, PeerFactory factory) {
+void DetectorRegistry::addPeer(std::string name, std::string description, PeerFactory factory) {
   entries_.push_back(
       {std::move(name), std::move(description), {}, std::move(factory), Kind::CpuPeer});
 }
 
-StrategyRegistry::Kind StrategyRegistry::kind(std::string_view name) const {
+DetectorRegistry::Kind DetectorRegistry::kind(std::string_view name) const {
   return get(name).kind;
 }
 
-const StrategyRegistry::Entry& StrategyRegistry::get(std::string_view name) const {
+const DetectorRegistry::Entry& DetectorRegistry::get(std::string_view name) const {
   validate({std::string(name)});
   return *find(name);
 }
 
-const StrategyRegistry::Entry* StrategyRegistry::find(std::string_view name) const {
+const DetectorRegistry::Entry* DetectorRegistry::find(std::string_view name) const {
   for (const auto& e : entries_)
     if (e.name == name) return &e;
   return nullptr;
 }
 
-bool StrategyRegistry::contains(std::string_view name) const { return find(name) != nullptr; }
+bool DetectorRegistry::contains(std::string_view name) const { return find(name) != nullptr; }
 
-std::vector<std::string> StrategyRegistry::names() const {
+std::vector<std::string> DetectorRegistry::names() const {
   std::vector<std::string> out;
   for (const auto& e : entries_) out.push_back(e.name);
   return out;
 }
 
-std::vector<std::string> StrategyRegistry::names(Kind kind) const {
+std::vector<std::string> DetectorRegistry::names(Kind kind) const {
   std::vector<std::string> out;
   for (const auto& e : entries_)
     if (e.kind == kind) out.push_back(e.name);
   return out;
 }
 
-std::string StrategyRegistry::description(std::string_view name) const {
+std::string DetectorRegistry::description(std::string_view name) const {
   const Entry* e = find(name);
   return e ? e->description : std::string();
 }
 
-void StrategyRegistry::validate(const std::vector<std::string>& names) const {
+void DetectorRegistry::validate(const std::vector<std::string>& names) const {
   for (const auto& n : names) {
     if (!contains(n)) {
       std::string known;
@@ -109,24 +109,24 @@ void StrategyRegistry::validate(const std::vector<std::string>& names) const {
   }
 }
 
-std::unique_ptr<CullingStrategy> StrategyRegistry::create(std::string_view name,
-                                                          const StrategyOptions& options) const {
+std::unique_ptr<CullingStrategy> DetectorRegistry::create(std::string_view name,
+                                                          const DetectorOptions& options) const {
   const Entry& e = get(name);
   if (e.kind == Kind::CpuPeer)
     throw InputError("'" + e.name + "' is a CPU peer, a detector by itself: no culling strategy");
   return e.strategy(options);
 }
 
-std::unique_ptr<CollisionDetector> StrategyRegistry::createPeer(
-    std::string_view name, const StrategyOptions& options) const {
+std::unique_ptr<CollisionDetector> DetectorRegistry::createPeer(
+    std::string_view name, const DetectorOptions& options) const {
   const Entry& e = get(name);
   if (e.kind != Kind::CpuPeer)
     throw InputError("'" + e.name + "' is a culling strategy, not a CPU peer");
   return e.peer(options);
 }
 
-std::unique_ptr<CollisionDetector> StrategyRegistry::createDetector(std::string_view name,
-                                                                    const StrategyOptions& options,
+std::unique_ptr<CollisionDetector> DetectorRegistry::createDetector(std::string_view name,
+                                                                    const DetectorOptions& options,
                                                                     VisibilityBackend& backend,
                                                                     ExactPhase& exact) const {
   const Entry& e = get(name);

@@ -1,6 +1,6 @@
 #pragma once
 // Detectors by name. The harness creates every detector through here and knows nothing else of
-// them; a new culling strategy or CPU peer is one class plus one line in StrategyRegistry.cpp.
+// them; a new culling strategy or CPU peer is one class plus one line in DetectorRegistry.cpp.
 #include <functional>
 #include <memory>
 #include <string>
@@ -15,20 +15,20 @@
 
 namespace cdb {
 
-struct StrategyOptions {
+struct DetectorOptions {
   int resolution = 800;  // frame-buffer side in pixels
   // The config's culling section: the visibility mode, and each strategy's own options, which
   // the registry's factories pass to the strategy.
   CullingSpec culling;
 };
 
-class StrategyRegistry {
+class DetectorRegistry {
  public:
-  using StrategyFactory = std::function<std::unique_ptr<CullingStrategy>(const StrategyOptions&)>;
-  using PeerFactory = std::function<std::unique_ptr<CollisionDetector>(const StrategyOptions&)>;
+  using StrategyFactory = std::function<std::unique_ptr<CullingStrategy>(const DetectorOptions&)>;
+  using PeerFactory = std::function<std::unique_ptr<CollisionDetector>(const DetectorOptions&)>;
 
   // The registry with every detector of the project.
-  static const StrategyRegistry& builtin();
+  static const DetectorRegistry& builtin();
 
   // What an entry is: an image-based culling strategy (asks a visibility backend, leaves sets for
   // the exact phase), a reference that leaves sets without asking any backend (all_pairs), or a
@@ -44,15 +44,15 @@ class StrategyRegistry {
   // with `backend` and `exact` (both outlive the detector; `exact` built for the scene it will be
   // attached to). Throws InputError naming the unknown detector and listing the known ones.
   [[nodiscard]] std::unique_ptr<CollisionDetector> createDetector(std::string_view name,
-                                                                  const StrategyOptions& options,
+                                                                  const DetectorOptions& options,
                                                                   VisibilityBackend& backend,
                                                                   ExactPhase& exact) const;
   // The culling strategy alone; throws InputError for an unknown name or a CPU peer.
   [[nodiscard]] std::unique_ptr<CullingStrategy> create(std::string_view name,
-                                                        const StrategyOptions& options) const;
+                                                        const DetectorOptions& options) const;
   // A CPU peer; throws InputError for an unknown name or a culling strategy.
   [[nodiscard]] std::unique_ptr<CollisionDetector> createPeer(std::string_view name,
-                                                              const StrategyOptions& options) const;
+                                                              const DetectorOptions& options) const;
   [[nodiscard]] bool contains(std::string_view name) const;
   [[nodiscard]] std::vector<std::string> names() const;
   // The entries of one kind, in registration order.
