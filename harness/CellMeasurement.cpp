@@ -7,6 +7,10 @@
 
 namespace cdb {
 
+namespace {
+
+// The row of one detected frame: where each column's value comes from (the ground truth's
+// columns are filled by measureCell).
 FrameRecord frameRecordOf(const Cell& cell, const CellFrames& frames, const std::string& visibility,
                           std::uint32_t frame, const DetectedFrame& detected) {
   const CullingCounters counters = detected.cullingCounters();
@@ -35,6 +39,8 @@ FrameRecord frameRecordOf(const Cell& cell, const CellFrames& frames, const std:
   r.pixelsWritten = counters.visibility.pixelsWritten;
   return r;
 }
+
+}  // namespace
 
 std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames, DetectorOptions options,
                                      VisibilityBackend& backend, WallTimeBreakdown& time,

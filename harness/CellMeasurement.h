@@ -24,9 +24,4 @@ namespace cdb {
                                                    WallTimeBreakdown& time,
                                                    const std::function<void()>& afterEachFrame);
 
-// The row of one detected frame: where each column's value comes from.
-[[nodiscard]] FrameRecord frameRecordOf(const Cell& cell, const CellFrames& frames,
-                                        const std::string& visibility, std::uint32_t frame,
-                                        const DetectedFrame& detected);
-
 }  // namespace cdb
