@@ -40,6 +40,8 @@ class CpuDepthBuffer {
   [[nodiscard]] bool uniform(std::size_t index) const { return uniform_[index] != 0; }
   // Fills a uniform tile with its value, so that pixels can be written one by one.
   void materialise(std::size_t index);
+  // Marks a tile uniform again at its tileMin() (which the caller has set equal to tileMax()).
+  void markUniform(std::size_t index) { uniform_[index] = 1; }
 
   // Stored depth of one pixel (tests and debugging; slow).
   [[nodiscard]] float at(int x, int y) const;

@@ -93,6 +93,55 @@ std::size_t fillChunk(const CpuCommandList& list, const CpuCommand& c, std::uint
   return kept;
 }
 
+// A piece decided by the tiles under it before any of its triangles is set up: its screen bounds
+// (the corners of a box holding it, through its matrix) give a pixel box holding every pixel
+// box its triangles get from setupBounds, and key bounds beyond all of theirs. A test whose
+// farthest key is nearer than everything stored there is fully visible; a write whose nearest is
+// at or behind everything stored changes nothing. Both are what drawing its triangles one by one
+// would find (each triangle is decided by the same tiles), only sooner.
+bool decidedByBounds(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenMatrix& toScreen,
+                     const Eigen::AlignedBox3d& box, CpuCommand::Role role) {
+  if (box.isEmpty()) return false;
+  double minX = raster_detail::kInf, minY = minX, minK = minX;
+  double maxX = -raster_detail::kInf, maxY = maxX, maxK = maxX;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
+    const Eigen::Vector3d p = toScreen.leftCols<3>() * corner + toScreen.col(3);
+    minX = std::min(minX, p.x()), maxX = std::max(maxX, p.x());
+    minY = std::min(minY, p.y()), maxY = std::max(maxY, p.y());
+    minK = std::min(minK, p.z()), maxK = std::max(maxK, p.z());
+  }
+  if (!std::isfinite(minX + maxX + minY + maxY + minK + maxK)) return false;
+  // A pixel more on each side and keys widened far beyond the rounding of the transforms (the
+  // triangles' vertices go through the same matrix, each rounded a little differently).
+  const double m = pass.marginPx + 1.0;
+  const int x0 = static_cast<int>(std::max(0.0, std::floor(minX - m) - 1.0));
+  const int y0 = static_cast<int>(std::max(0.0, std::floor(minY - m) - 1.0));
+  const double last = pass.resolution - 1;
+  const double fx1 = std::min(last, std::ceil(maxX + m)), fy1 = std::min(last, std::ceil(maxY + m));
+  if (fx1 < x0 || fy1 < y0) return true;  // off-screen: no triangle of it has a pixel
+  const int x1 = static_cast<int>(fx1), y1 = static_cast<int>(fy1);
+  const double slack = 1e-9 * (1.0 + std::abs(minK) + std::abs(maxK));
+  const bool test = role == CpuCommand::Role::Test;
+  const double shift = pass.conservative ? (test ? pass.depthEpsilon : -pass.depthEpsilon)
+                                         : (test ? pass.rawTestOffset : 0.0);
+  const auto clampToPass = [&](float v) { return std::clamp(v, pass.keyLo, pass.keyHi); };
+  const float zHi = clampToPass(raster_detail::roundUp(maxK + shift + slack));
+  const float zLo = clampToPass(raster_detail::roundDown(minK + shift - slack));
+  constexpr int kTile = CpuDepthBuffer::kTile;
+  for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
+    for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) {
+      const std::size_t index = buffer.tileIndex(tx, ty);
+      const float lo = buffer.tileMin(index), hi = buffer.tileMax(index);
+      const float nearest = pass.sign > 0 ? lo : -hi, farthest = pass.sign > 0 ? hi : -lo;
+      if (test ? zHi >= nearest : zLo < farthest) return false;
+    }
+  return true;
+}
+
+const Eigen::AlignedBox3d kUnitCube(Eigen::Vector3d::Constant(-1.0),
+                                    Eigen::Vector3d::Constant(1.0));
+
 ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box) {
   ScreenMatrix m;
   m.leftCols<3>() = objectToScreen.leftCols<3>() * box.axes * box.halfExtents.asDiagonal();
@@ -105,8 +154,9 @@ void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandL
   std::array<ScreenTriangle, kChunk> chunk;
   if (c.source == CpuCommand::Source::Boxes) {
     for (std::uint32_t b = 0; b < c.count; ++b) {
-      const std::size_t n =
-          boxTriangles(cubeToScreen(c.toScreen, list.boxes[c.first + b]), c.role, chunk.data());
+      const ScreenMatrix cube = cubeToScreen(c.toScreen, list.boxes[c.first + b]);
+      if (list.decideByBounds && decidedByBounds(buffer, raster, cube, kUnitCube, c.role)) continue;
+      const std::size_t n = boxTriangles(cube, c.role, chunk.data());
       const std::span<const ScreenTriangle> tris(chunk.data(), n);
       if (testTrianglesUntilOccluded(buffer, raster, tris, work) < n) {
         answers[c.query + (c.answerEach ? b : 0)] = 0;
@@ -115,6 +165,8 @@ void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandL
     }
     return;
   }
+  if (list.decideByBounds && decidedByBounds(buffer, raster, c.toScreen, c.meshBox, c.role))
+    return;
   for (std::uint32_t done = 0; done < c.count;) {
     const std::uint32_t at = done;
     const std::size_t n = fillChunk(list, c, done, chunk);
@@ -129,32 +181,38 @@ void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandL
   }
 }
 
+}  // namespace
+
 void runWrite(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandList& list,
               const CpuCommand& c, RasterWork& work) {
   std::array<ScreenTriangle, kChunk> chunk;
   if (c.source == CpuCommand::Source::Boxes) {
     for (std::uint32_t b = 0; b < c.count; ++b) {
-      const std::size_t n =
-          boxTriangles(cubeToScreen(c.toScreen, list.boxes[c.first + b]), c.role, chunk.data());
+      const ScreenMatrix cube = cubeToScreen(c.toScreen, list.boxes[c.first + b]);
+      if (list.decideByBounds && decidedByBounds(buffer, raster, cube, kUnitCube, c.role)) continue;
+      const std::size_t n = boxTriangles(cube, c.role, chunk.data());
       writeTriangles(buffer, raster, std::span<const ScreenTriangle>(chunk.data(), n), work);
     }
     return;
   }
+  if (list.decideByBounds && decidedByBounds(buffer, raster, c.toScreen, c.meshBox, c.role))
+    return;
   for (std::uint32_t done = 0; done < c.count;) {
     const std::size_t n = fillChunk(list, c, done, chunk);
     writeTriangles(buffer, raster, std::span<const ScreenTriangle>(chunk.data(), n), work);
   }
 }
 
-}  // namespace
-
 void runPass(CpuDepthBuffer& buffer, const CpuPass& pass, const CpuCommandList& list,
-             std::uint8_t* answers, RasterWork& work) {
+             std::uint8_t* answers, RasterWork& work,
+             std::span<const CpuFootprint* const> footprints) {
   if (pass.clears) buffer.clear(pass.clearValue);
   for (std::uint32_t i = pass.firstCommand; i < pass.endCommand; ++i) {
     const CpuCommand& c = list.commands[i];
     if (c.role == CpuCommand::Role::Test)
       runTest(buffer, pass.raster, list, c, answers, work);
+    else if (i < footprints.size() && footprints[i] != nullptr)
+      mergeFootprint(buffer, pass.raster, *footprints[i], work);
     else
       runWrite(buffer, pass.raster, list, c, work);
   }

@@ -4,13 +4,16 @@
 // only read at fetchResults, so the recorded passes run then (CpuRasterBackend runs independent
 // ones concurrently); this file holds the record and how one pass runs on a depth buffer.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "core/OrientedBox.h"
 #include "culling/visibility/VisibilityBackend.h"
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
+#include "culling/visibility/cpu/CpuFootprint.h"
 #include "culling/visibility/cpu/CpuRasteriser.h"
 #include "culling/visibility/cpu/CpuTriangleSetup.h"
 
@@ -37,6 +40,8 @@ struct CpuCommand {
   // (tests) or toward the viewer (writes) are drawn. 0: every triangle.
   std::int8_t winding = 0;
   ScreenMatrix toScreen = ScreenMatrix::Zero();
+  // The mesh's box in its own frame (Range and Listed): what the piece's screen bounds come from.
+  Eigen::AlignedBox3d meshBox;
 };
 
 struct CpuPass {
@@ -57,6 +62,9 @@ struct CpuCommandList {
   std::vector<std::uint32_t> listed;
   std::vector<OrientedBox> boxes;
   std::uint32_t queries = 0;
+  // Whether a piece may be decided by the tiles under its screen bounds before its triangles are
+  // set up (the same answers and depths either way; off for tests and measurements).
+  bool decideByBounds = true;
 
   void clear() {
     passes.clear(), commands.clear(), listed.clear(), boxes.clear();
@@ -66,8 +74,13 @@ struct CpuCommandList {
 };
 
 // Runs `pass` (clearing first if it clears) on `buffer`, which has the pass' resolution; tests set
-// answers[query] = 0 where occluded (answers start at 1).
+// answers[query] = 0 where occluded (answers start at 1). A write with a footprint
+// (footprints[command], empty or nullptr: none) merges it instead of rasterising.
 void runPass(CpuDepthBuffer& buffer, const CpuPass& pass, const CpuCommandList& list,
-             std::uint8_t* answers, RasterWork& work);
+             std::uint8_t* answers, RasterWork& work,
+             std::span<const CpuFootprint* const> footprints = {});
+// Rasterises one write command of `list` into `buffer`.
+void runWrite(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandList& list,
+              const CpuCommand& c, RasterWork& work);
 
 }  // namespace cdb

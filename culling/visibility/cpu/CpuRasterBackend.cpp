@@ -23,6 +23,7 @@ std::string CpuRasterBackend::renderer() const {
 void CpuRasterBackend::setOptions(const VisibilityOptions& options) {
   flush();  // what was drawn so far keeps the options it was drawn with
   options_ = options;
+  footprints_.forget();
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
   if (!arena_ || threads != threads_) {
     threads_ = std::max(threads, 1);
@@ -43,10 +44,13 @@ void CpuRasterBackend::attachScene(const SceneGeometry& scene) {
           throw InputError("mesh '" + m.name + "' has a triangle index " + std::to_string(i) +
                            " beyond its " + std::to_string(m.vertices.size()) + " vertices");
   scene_ = &scene;
+  footprints_.forget();  // a new scene's meshes may sit where the old one's were
   meshWinding_.clear();
+  meshBox_.clear();
   for (const Mesh& m : scene.meshes) {
     const double volume = isClosedMesh(m) ? signedVolume(m) : 0.0;
     meshWinding_.push_back(volume > 0 ? 1 : volume < 0 ? -1 : 0);
+    meshBox_.push_back(m.bounds());
   }
   poses_.assign(scene.objectCount(), Eigen::Matrix4d::Identity());
   lastResolution_ = 0;
@@ -58,6 +62,8 @@ void CpuRasterBackend::setPoses(std::span<const Pose> poses) {
     throw RunError("got " + std::to_string(poses.size()) + " poses for a scene of " +
                    std::to_string(objects) + " objects");
   for (std::size_t i = 0; i < poses.size(); ++i) poses_[i] = poses[i].matrix();
+  // A new frame: no write of the last one recurs (and a detector's time is its own).
+  footprints_.forget();
 }
 
 CpuPass CpuRasterBackend::passFor(const DepthPassSetup& setup) const {
@@ -149,6 +155,7 @@ CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source s
   c.role = role;
   c.source = source;
   c.mesh = &scene_->meshOf(object);
+  c.meshBox = meshBox_[scene_->objects[object].mesh];
   c.toScreen = worldToKey_ * poses_[object];
   return c;
 }
@@ -290,6 +297,12 @@ void CpuRasterBackend::flush() {
   chainStarts_.push_back(passes.size());
   chainWork_.assign(chains, RasterWork{});
   answers_.resize(issued_, 1);
+  RasterWork footprintWork;
+  list_.decideByBounds = savers_.decideByBounds;
+  if (savers_.writeFootprints)
+    footprints_.prepare(list_, *arena_, threads_, footprintWork);
+  else
+    footprints_.skip();
 
   const bool firstContinues = passes[0].continues;
   if (firstContinues && !retained_)
@@ -305,7 +318,8 @@ void CpuRasterBackend::flush() {
       buffer->resize(passes[chainStarts_[chain]].raster.resolution);
     }
     for (std::size_t p = chainStarts_[chain]; p < chainStarts_[chain + 1]; ++p)
-      runPass(*buffer, passes[p], list_, answers_.data(), chainWork_[chain]);
+      runPass(*buffer, passes[p], list_, answers_.data(), chainWork_[chain],
+              footprints_.perCommand());
   };
   if (chains == 1 || threads_ == 1) {
     for (std::size_t chain = 0; chain < chains; ++chain) runChain(chain);
@@ -318,6 +332,7 @@ void CpuRasterBackend::flush() {
   releaseBuffer(std::move(retained_));
   retained_ = std::move(buffers[chains - 1]);
   for (std::size_t chain = 0; chain + 1 < chains; ++chain) releaseBuffer(std::move(buffers[chain]));
+  chainWork_.push_back(footprintWork);
   for (const RasterWork& w : chainWork_) {
     counters_.pixelsTested += w.pixelsTested;
     counters_.pixelsWritten += w.pixelsWritten;
@@ -332,6 +347,11 @@ void CpuRasterBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
   fullyVisible.assign(answers_.begin(), answers_.end());
   answers_.clear();
   issued_ = 0;
+}
+
+void CpuRasterBackend::setWorkSavers(const WorkSavers& savers) {
+  flush();
+  savers_ = savers;
 }
 
 float CpuRasterBackend::storedDepth(int x, int y) {

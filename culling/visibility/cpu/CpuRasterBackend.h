@@ -16,6 +16,7 @@
 #include "culling/visibility/VisibilityBackend.h"
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
 #include "culling/visibility/cpu/CpuPassCommands.h"
+#include "culling/visibility/cpu/CpuWriteFootprints.h"
 
 namespace cdb {
 
@@ -56,6 +57,18 @@ class CpuRasterBackend final : public VisibilityBackend {
   void resetCounters() override { counters_ = {}; }
 
   [[nodiscard]] int threads() const { return threads_; }
+  // What the backend does to save work, each on by default: recurring writes drawn from
+  // footprints (CpuWriteFootprints), pieces decided by the tiles under their screen bounds
+  // (CpuCommandList::decideByBounds). Answers and depths are the same either way; for tests and
+  // for measuring what each saves.
+  struct WorkSavers {
+    bool writeFootprints = true;
+    bool decideByBounds = true;
+  };
+  void setWorkSavers(const WorkSavers& savers);
+  // Footprints the last run recording drew from, and how many of them it rasterised.
+  [[nodiscard]] std::size_t lastFootprintsUsed() const { return footprints_.used(); }
+  [[nodiscard]] std::size_t lastFootprintsBuilt() const { return footprints_.built(); }
   // The stored depth at pixel (x, y) of the buffer the last recorded pass ran on (runs what is
   // recorded first); for tests.
   [[nodiscard]] float storedDepth(int x, int y);
@@ -84,6 +97,8 @@ class CpuRasterBackend final : public VisibilityBackend {
   const SceneGeometry* scene_ = nullptr;
   // Per mesh of the scene: CpuCommand::winding for a draw of all of it.
   std::vector<std::int8_t> meshWinding_;
+  // Per mesh of the scene: its box in its own frame.
+  std::vector<Eigen::AlignedBox3d> meshBox_;
   std::vector<Eigen::Matrix4d> poses_;
 
   // The open pass (kept across fetches: draws may go on in it).
@@ -105,6 +120,9 @@ class CpuRasterBackend final : public VisibilityBackend {
   std::vector<std::size_t> chainStarts_;
   std::vector<RasterWork> chainWork_;
   std::vector<std::unique_ptr<CpuDepthBuffer>> chainBuffers_;
+  // Writes drawn more than once in a recording are rasterised once (see CpuWriteFootprints).
+  CpuWriteFootprints footprints_;
+  WorkSavers savers_;
 };
 
 }  // namespace cdb
