@@ -56,7 +56,8 @@ std::string describeBaseline(const CheckBaseline& b) {
 void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const MachineInfo& machine) {
   // Why a backend's ratios are not compared, per backend ("" = compared).
   std::map<std::string, std::string> skipWhy;
-  for (const auto& [backend, renderer] : report.renderers) {
+  for (const auto& backend : report.timedBackends) {
+    const std::string& renderer = report.renderers.at(backend);
     std::string& why = skipWhy[backend];
     const auto it = baseline.renderers.find(backend);
     if (it == baseline.renderers.end())
@@ -101,12 +102,27 @@ void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const Mach
     report.notes.push_back(std::to_string(added.size()) +
                            " ratio(s) not in the baseline, not compared (first: " + added.front() +
                            "); record them with --update-baseline");
-  const auto stale = std::count_if(baseline.ratios.begin(), baseline.ratios.end(), [&](const auto& kv) {
-    return std::none_of(report.timing.begin(), report.timing.end(),
-                        [&](const TimingRow& t) { return t.measured.key == kv.first; });
-  });
+  // The baseline's ratios of backends this run does not time are not stale: another check, with
+  // those backends timed, compares them.
+  const auto timed = [&](const std::string& backend) {
+    return std::find(report.timedBackends.begin(), report.timedBackends.end(), backend) !=
+           report.timedBackends.end();
+  };
+  std::size_t stale = 0, untimed = 0;
+  for (const auto& [key, ratio] : baseline.ratios) {
+    if (!timed(ratio.backend)) {
+      ++untimed;
+    } else if (std::none_of(report.timing.begin(), report.timing.end(),
+                            [&](const TimingRow& t) { return t.measured.key == key; })) {
+      ++stale;
+    }
+  }
   if (stale > 0)
     report.notes.push_back(std::to_string(stale) + " ratio(s) of the baseline not measured by this plan");
+  if (untimed > 0)
+    report.notes.push_back(std::to_string(untimed) +
+                           " ratio(s) of the baseline belong to backends whose timing this run does "
+                           "not measure, not compared");
 }
 
 }  // namespace
@@ -138,6 +154,18 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
     backendRegistry.validate(b);
     report.renderers[b] = backendRegistry.create(b, resources, {})->renderer();
   }
+  for (const auto& b : options.timingBackends) backendRegistry.validate(b);
+  for (const auto& b : backends) {
+    const auto& t = options.timingBackends;
+    if (t.empty() || std::find(t.begin(), t.end(), b) != t.end())
+      report.timedBackends.push_back(b);
+    else
+      report.notes.push_back(b + ": correctness only, its timing is not measured (not one of the timing backends)");
+  }
+  for (const auto& b : options.timingBackends)
+    if (std::find(backends.begin(), backends.end(), b) == backends.end())
+      report.notes.push_back(b + " timing not measured: the backend is not checked here (not named, or it does "
+                             "not start)");
   CheckScenes scenes(options.configDir, options.assetDirs);
 
   for (const auto& c : plan.correctness)
@@ -149,7 +177,7 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
     }
   std::vector<RatioMeasurement> ratios;
   std::vector<std::string> withoutFloor;
-  for (const auto& backend : backends) {
+  for (const auto& backend : report.timedBackends) {
     for (const auto& c : plan.speedups) {
       reportStep(options, start, backend + ": timing " + c.key());
       auto m = measureSpeedups(resources, backend, scenes, {c}, registry);
@@ -176,7 +204,7 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
   } else {
     CheckBaseline b;
     b.createdUtc = utcTimestamp();
-    b.renderers = report.renderers;
+    for (const auto& backend : report.timedBackends) b.renderers[backend] = report.renderers.at(backend);
     b.buildType = machine.buildType;
     b.machine = toJson(machine);
     if (const HeadlessGlContext* gl = resources.openedGl()) b.gl = toJson(gl->info());
@@ -210,7 +238,10 @@ const char* ratioStatusText(RatioStatus s) {
 
 void printCheckReport(const CheckReport& r, std::FILE* out) {
   for (const auto& [backend, renderer] : r.renderers)
-    std::fprintf(out, "backend:     %s on %s\n", backend.c_str(), renderer.c_str());
+    std::fprintf(out, "backend:     %s on %s%s\n", backend.c_str(), renderer.c_str(),
+                 std::find(r.timedBackends.begin(), r.timedBackends.end(), backend) == r.timedBackends.end()
+                     ? " (correctness only)"
+                     : "");
   std::fprintf(out, "baseline:    %s%s (%s)\n", r.baselineFile.c_str(),
                r.baselineWritten ? " written" : "", r.baselineDescription.c_str());
 

@@ -32,6 +32,9 @@ struct CheckOptions {
   // Visibility backends to check (correctness and timing on each); empty: every registered
   // backend that starts here.
   std::vector<std::string> backends;
+  // Of those, the backends whose timing ratios are measured (and, with updateBaseline, recorded);
+  // the others are checked for correctness only. Empty: every checked backend.
+  std::vector<std::string> timingBackends;
   std::vector<std::string> assetDirs;  // as --assets
   std::filesystem::path configDir = defaultConfigDir();
   std::vector<std::string> commandLine;  // recorded in a written baseline
@@ -55,6 +58,7 @@ struct TimingRow {
 
 struct CheckReport {
   std::map<std::string, std::string> renderers;  // per checked backend, what rendered
+  std::vector<std::string> timedBackends;         // the checked backends whose ratios were measured
   std::filesystem::path baselineFile;
   std::string baselineDescription;  // when and where the baseline was measured
   std::vector<CorrectnessRow> correctness;

@@ -135,6 +135,10 @@ int main(int argc, char** argv) {
   std::string checkBackends;
   checkCmd->add_option("--visibility", checkBackends,
                        "comma-separated visibility backends to check (default: every one that starts here)");
+  std::string checkTimingBackends;
+  checkCmd->add_option("--timing-backends", checkTimingBackends,
+                       "comma-separated backends, of those checked, whose timing ratios are measured and "
+                       "compared (the others: correctness only; default: every checked backend)");
   checkCmd->add_option("--assets", check.assetDirs, "asset folder (repeatable), before $CDBENCH_ASSETS");
 
   try {
@@ -177,6 +181,7 @@ int main(int argc, char** argv) {
     if (*checkCmd) {
       for (int i = 0; i < argc; ++i) check.commandLine.emplace_back(argv[i]);
       check.backends = splitNames(checkBackends);
+      check.timingBackends = splitNames(checkTimingBackends);
       check.progress = stderr;
       const auto report = cdb::runRegressionCheck(check);
       cdb::printCheckReport(report, stdout);

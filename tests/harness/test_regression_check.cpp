@@ -243,6 +243,64 @@ TEST(RegressionCheck, RatiosOfAnotherRendererAreNotCompared) {
   EXPECT_NE(report.notes[0].find("Some GPU"), std::string::npos) << report.notes[0];
 }
 
+// A checked backend left out of the timing backends is checked for correctness only: no ratio is
+// measured on it or recorded for it, and its ratios in the baseline are not held against the run,
+// while a run that times it still fails on them.
+TEST(RegressionCheck, OnlyTheTimingBackendsAreTimed) {
+  ASSERT_GE(tori().contactFrame, 0);
+  const test::ScratchDir dir;
+  CheckOptions options = optionsFor(dir);
+  const std::string other = "gl-flags";
+  ASSERT_NE(other, kBackend);
+  options.backends = {kBackend, other};
+  CheckPlan plan;
+  plan.strategies = {"cullide", "ours"};
+  plan.correctness = {{tori().scene, {tori().contactFrame}, {64}}};
+  plan.speedups = {{tori().scene, tori().contactFrame, 64, "cullide", "ours", 1}};
+  options.updateBaseline = true;
+  ASSERT_TRUE(runRegressionCheck(options, plan).baselineWritten);
+
+  // The baseline as if `other` had been ever so much faster then.
+  CheckBaseline b = readCheckBaseline(options.baselineFile);
+  ASSERT_EQ(b.ratios.size(), 2u);
+  b.ratios.at(other + ": " + plan.speedups[0].key()).value = 1000.0;
+  writeCheckBaseline(b, options.baselineFile);
+
+  options.updateBaseline = false;
+  options.timingBackends = {kBackend};
+  const CheckReport report = runRegressionCheck(options, plan);
+  printCheckReport(report, stdout);
+  EXPECT_EQ(report.timedBackends, std::vector<std::string>{kBackend});
+  EXPECT_EQ(report.correctness.size(), 4u) << "both strategies on both backends";
+  EXPECT_EQ(report.correctnessFailures(), 0u);
+  ASSERT_EQ(report.timing.size(), 1u);
+  EXPECT_EQ(report.timing[0].measured.backend, kBackend);
+  EXPECT_TRUE(report.timing[0].status == RatioStatus::Pass || report.timing[0].status == RatioStatus::Fail)
+      << "compared with the baseline";
+  EXPECT_TRUE(std::any_of(report.notes.begin(), report.notes.end(), [&](const std::string& n) {
+    return n.starts_with(other + ": correctness only");
+  }));
+
+  options.timingBackends.clear();  // every checked backend
+  const CheckReport all = runRegressionCheck(options, plan);
+  const TimingRow* row = rowOf(all, other + ": " + plan.speedups[0].key());
+  ASSERT_NE(row, nullptr);
+  EXPECT_EQ(row->status, RatioStatus::Fail);
+  EXPECT_FALSE(all.passed());
+
+  // A baseline recorded with fewer timing backends holds only their ratios and renderers.
+  options.updateBaseline = true;
+  options.timingBackends = {kBackend};
+  ASSERT_TRUE(runRegressionCheck(options, plan).baselineWritten);
+  b = readCheckBaseline(options.baselineFile);
+  EXPECT_EQ(b.ratios.size(), 1u);
+  EXPECT_EQ(b.renderers.size(), 1u);
+  EXPECT_EQ(b.renderers.count(kBackend), 1u);
+
+  options.timingBackends = {"no-such-backend"};
+  EXPECT_THROW((void)runRegressionCheck(options, plan), InputError);
+}
+
 TEST(RegressionCheck, MissingBaselineIsAnInputErrorSayingHowToRecordOne) {
   CheckOptions options;
   options.baselineFile = "/nonexistent/baseline.json";
