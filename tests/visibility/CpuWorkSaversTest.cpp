@@ -51,7 +51,8 @@ Mesh bumpySphere(unsigned seed, int rings, int segments) {
 
 SceneGeometry sphereScene(int objects) {
   std::vector<Mesh> meshes;
-  for (int o = 0; o < objects; ++o) meshes.push_back(bumpySphere(11 + o, 10 + o % 3, 14));
+  // Enough triangles (> 500) that their writes get footprints.
+  for (int o = 0; o < objects; ++o) meshes.push_back(bumpySphere(11 + o, 18 + o % 3, 16));
   return test::sceneOf(std::move(meshes));
 }
 
@@ -107,11 +108,11 @@ Outcome cullideDraws(CpuRasterBackend::WorkSavers savers, bool conservative, int
     }
     fetch();
   }
-  // Triangle level: every other triangle of each object.
+  // Triangle level: four of every five triangles of each object.
   std::vector<std::vector<std::uint32_t>> lists(objects);
   for (ObjectId o = 0; o < objects; ++o)
-    for (std::uint32_t t = o % 2; t < scene.meshOf(o).triangleCount(); t += 2)
-      lists[o].push_back(t);
+    for (std::uint32_t t = 0; t < scene.meshOf(o).triangleCount(); ++t)
+      if ((t + o) % 5 != 0) lists[o].push_back(t);
   const ViewSpec side{Eigen::Vector3d(1, 1, 0).normalized(), bounds, resolution};
   for (int pass = 0; pass < 2; ++pass) {
     backend.beginPass(side, DepthUse::Fresh);
@@ -137,10 +138,10 @@ Outcome cullideDraws(CpuRasterBackend::WorkSavers savers, bool conservative, int
     backend.writeRange(test::wholeOf(scene, o));
   }
   fetch();
-  std::vector<OrientedBox> boxes(6);
+  std::vector<OrientedBox> boxes(70);  // enough for a footprint
   for (std::size_t b = 0; b < boxes.size(); ++b) {
-    boxes[b].center = Eigen::Vector3d(0.1 * b, -0.2, 0.05 * b);
-    boxes[b].halfExtents = Eigen::Vector3d(0.3, 0.1 + 0.05 * b, 0.2);
+    boxes[b].center = Eigen::Vector3d(0.02 * b - 0.7, -0.2 + 0.01 * b, 0.01 * b);
+    boxes[b].halfExtents = Eigen::Vector3d(0.05, 0.03 + 0.002 * b, 0.04);
   }
   for (int pass = 0; pass < 2; ++pass) {
     backend.beginPass(up, DepthUse::Fresh);
@@ -263,7 +264,10 @@ TEST(CpuWorkSavers, WritesThatDifferShareNoFootprint) {
   backend.setPoses(posesAround(4, 2));
   const Aabb bounds(Eigen::Vector3d::Constant(-2.5), Eigen::Vector3d::Constant(2.5));
   std::vector<std::uint8_t> answers;
-  const std::uint32_t a[] = {0, 1, 2}, b[] = {0, 1, 3};
+  // Two lists of 400 triangles, differing in the last.
+  std::vector<std::uint32_t> a(400), b(400);
+  for (std::uint32_t t = 0; t < 400; ++t) a[t] = b[t] = t;
+  b.back() = 450;
   const auto footprintsOf = [&](auto&& draws) {
     draws();
     backend.fetchResults(answers);
