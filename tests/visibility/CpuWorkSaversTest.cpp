@@ -67,7 +67,7 @@ std::vector<Pose> posesAround(unsigned seed, std::size_t n) {
   return poses;
 }
 
-struct Outcome {
+struct DrawsOutcome {
   std::vector<std::vector<std::uint8_t>> answers;  // per fetch
   std::vector<std::size_t> footprints;             // per fetch
   std::vector<float> lastBuffer;                   // the buffer the last pass left
@@ -78,7 +78,7 @@ struct Outcome {
 // reverse, fresh depth, one fetch), then a triangle level (per member a batch of tests, then
 // its listed triangles written), then a pair of depth-sorted passes (one clear, opposite views)
 // and node boxes written in both passes of a view.
-Outcome cullideDraws(CpuRasterBackend::WorkSavers savers, bool conservative, int resolution,
+DrawsOutcome cullideDraws(CpuRasterBackend::WorkSavers savers, bool conservative, int resolution,
                      int threads) {
   const SceneGeometry scene = sphereScene(9);
   CpuRasterBackend backend(VisibilityOptions{conservative, 1e-5, threads});
@@ -86,7 +86,7 @@ Outcome cullideDraws(CpuRasterBackend::WorkSavers savers, bool conservative, int
   backend.attachScene(scene);
   backend.setPoses(posesAround(3, scene.objectCount()));
   const Aabb bounds(Eigen::Vector3d::Constant(-2.5), Eigen::Vector3d::Constant(2.5));
-  Outcome out;
+  DrawsOutcome out;
   std::vector<std::uint8_t> answers;
   const auto fetch = [&] {
     backend.fetchResults(answers);
@@ -167,11 +167,11 @@ TEST(CpuWorkSavers, LeaveWhatDrawingEveryTriangleLeaves) {
     for (int resolution : {64, 256, 601}) {
       SCOPED_TRACE(testing::Message()
                    << (conservative ? "conservative" : "raw") << " at " << resolution << " px");
-      const Outcome rasterised = cullideDraws(kNone, conservative, resolution, 1);
+      const DrawsOutcome rasterised = cullideDraws(kNone, conservative, resolution, 1);
       for (const Savers savers : {Savers{true, false}, Savers{false, true}, kAll}) {
         SCOPED_TRACE(testing::Message() << "footprints " << savers.writeFootprints
                                         << ", decided by bounds " << savers.decideByBounds);
-        const Outcome saved = cullideDraws(savers, conservative, resolution, 1);
+        const DrawsOutcome saved = cullideDraws(savers, conservative, resolution, 1);
         EXPECT_EQ(saved.answers, rasterised.answers);
         EXPECT_EQ(saved.lastBuffer, rasterised.lastBuffer);
         EXPECT_EQ(saved.counters.trianglesDrawn, rasterised.counters.trianglesDrawn);
@@ -249,11 +249,11 @@ TEST(CpuWorkSavers, PiecesDecidedByBoundsAsByTheirTriangles) {
 }
 
 TEST(CpuWorkSavers, RecurringWritesShareOneFootprint) {
-  const Outcome merged = cullideDraws(kAll, true, 128, 1);
+  const DrawsOutcome merged = cullideDraws(kAll, true, 128, 1);
   // Each axis: every object's write recurs once (9 objects); the triangle level's lists recur
   // (9); depth-sorted passes look opposite ways (none); the node boxes recur (9).
   EXPECT_EQ(merged.footprints, (std::vector<std::size_t>{9, 9, 9, 9, 0, 9}));
-  const Outcome rasterised = cullideDraws(kNone, true, 128, 1);
+  const DrawsOutcome rasterised = cullideDraws(kNone, true, 128, 1);
   EXPECT_EQ(rasterised.footprints, (std::vector<std::size_t>{0, 0, 0, 0, 0, 0}));
 }
 
@@ -329,8 +329,8 @@ TEST(CpuWorkSavers, FootprintsKeptAfterAFetchUntilThePosesChange) {
 }
 
 TEST(CpuWorkSavers, AnswersDoNotDependOnThreads) {
-  const Outcome one = cullideDraws(kAll, true, 200, 1);
-  const Outcome three = cullideDraws(kAll, true, 200, 3);
+  const DrawsOutcome one = cullideDraws(kAll, true, 200, 1);
+  const DrawsOutcome three = cullideDraws(kAll, true, 200, 3);
   EXPECT_EQ(three.answers, one.answers);
   EXPECT_EQ(three.lastBuffer, one.lastBuffer);
   EXPECT_EQ(three.counters.pixelsWritten, one.counters.pixelsWritten);
