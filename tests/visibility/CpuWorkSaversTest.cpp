@@ -79,7 +79,7 @@ struct DrawsOutcome {
 // its listed triangles written), then a pair of depth-sorted passes (one clear, opposite views)
 // and node boxes written in both passes of a view.
 DrawsOutcome cullideDraws(CpuRasterBackend::WorkSavers savers, bool conservative, int resolution,
-                     int threads) {
+                          int threads) {
   const SceneGeometry scene = sphereScene(9);
   CpuRasterBackend backend(VisibilityOptions{conservative, 1e-5, threads});
   backend.setWorkSavers(savers);

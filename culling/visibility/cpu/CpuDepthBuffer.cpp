@@ -20,12 +20,22 @@ void CpuDepthBuffer::clear(float value) {
   std::fill(min_.begin(), min_.end(), value);
   std::fill(max_.begin(), max_.end(), value);
   std::fill(uniform_.begin(), uniform_.end(), std::uint8_t{1});
+  materialised_.clear();
+}
+
+void CpuDepthBuffer::clearMaterialised(float value) {
+  for (std::uint32_t index : materialised_) {
+    min_[index] = max_[index] = value;
+    uniform_[index] = 1;
+  }
+  materialised_.clear();
 }
 
 void CpuDepthBuffer::materialise(std::size_t index) {
   if (!uniform_[index]) return;
   std::fill_n(tile(index), kTilePixels, min_[index]);
   uniform_[index] = 0;
+  materialised_.push_back(static_cast<std::uint32_t>(index));
 }
 
 float CpuDepthBuffer::at(int x, int y) const {

@@ -5,6 +5,7 @@
 // uniform (every pixel at one value) and only filled when a write reaches it.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace cdb {
@@ -40,8 +41,11 @@ class CpuDepthBuffer {
   [[nodiscard]] bool uniform(std::size_t index) const { return uniform_[index] != 0; }
   // Fills a uniform tile with its value, so that pixels can be written one by one.
   void materialise(std::size_t index);
-  // Marks a tile uniform again at its tileMin() (which the caller has set equal to tileMax()).
-  void markUniform(std::size_t index) { uniform_[index] = 1; }
+  // The tiles materialised since the last clear, each once, in the order they were.
+  [[nodiscard]] std::span<const std::uint32_t> materialisedTiles() const { return materialised_; }
+  // clear(value) at the cost of the tiles materialised since the last clear: for a buffer that
+  // held `value` everywhere before them.
+  void clearMaterialised(float value);
 
   // Stored depth of one pixel (tests and debugging; slow).
   [[nodiscard]] float at(int x, int y) const;
@@ -54,6 +58,7 @@ class CpuDepthBuffer {
   std::vector<float> min_;
   std::vector<float> max_;
   std::vector<std::uint8_t> uniform_;
+  std::vector<std::uint32_t> materialised_;
 };
 
 }  // namespace cdb

@@ -20,24 +20,19 @@ float footprintClearValue(const RasterPass& pass) {
   return pass.sign * std::numeric_limits<float>::infinity();
 }
 
-void takeFootprint(CpuDepthBuffer& scratch, const RasterPass& pass, int tx0, int ty0, int tx1,
-                   int ty1, CpuFootprint& footprint) {
+void takeFootprint(CpuDepthBuffer& scratch, const RasterPass& pass, CpuFootprint& footprint) {
   footprint.clear();
   const float nothing = footprintClearValue(pass);
-  for (int ty = ty0; ty <= ty1; ++ty)
-    for (int tx = tx0; tx <= tx1; ++tx) {
-      const std::size_t t = scratch.tileIndex(tx, ty);
-      if (scratch.uniform(t)) continue;  // untouched: a write only fills a tile it reaches
-      const float near = pass.sign > 0 ? scratch.tileMin(t) : scratch.tileMax(t);
-      if (near != nothing) {
-        footprint.tiles.push_back(static_cast<std::uint32_t>(t));
-        footprint.values.insert(footprint.values.end(), scratch.tile(t),
-                                scratch.tile(t) + kFootprintTilePixels);
-        footprint.nearest.push_back(near);
-      }
-      scratch.tileMin(t) = scratch.tileMax(t) = nothing;
-      scratch.markUniform(t);
-    }
+  // A write fills only the tiles it reaches; one that it filled but left unchanged holds nothing.
+  for (const std::uint32_t t : scratch.materialisedTiles()) {
+    const float near = pass.sign > 0 ? scratch.tileMin(t) : scratch.tileMax(t);
+    if (near == nothing) continue;
+    footprint.tiles.push_back(t);
+    footprint.values.insert(footprint.values.end(), scratch.tile(t),
+                            scratch.tile(t) + kFootprintTilePixels);
+    footprint.nearest.push_back(near);
+  }
+  scratch.clearMaterialised(nothing);
 }
 
 void mergeFootprint(CpuDepthBuffer& buffer, const RasterPass& pass, const CpuFootprint& footprint,

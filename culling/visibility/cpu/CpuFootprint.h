@@ -28,11 +28,9 @@ struct CpuFootprint {
 // (+infinity in the pass' key order).
 [[nodiscard]] float footprintClearValue(const RasterPass& pass);
 
-// Moves the tiles of `scratch` that a write reached (cleared to footprintClearValue before it;
-// all of them within tiles tx0..tx1, ty0..ty1) into `footprint`, and clears them again so that
-// `scratch` can take the next write.
-void takeFootprint(CpuDepthBuffer& scratch, const RasterPass& pass, int tx0, int ty0, int tx1,
-                   int ty1, CpuFootprint& footprint);
+// Moves the tiles of `scratch` that a write reached (cleared to footprintClearValue before it)
+// into `footprint`, and clears them again so that `scratch` can take the next write.
+void takeFootprint(CpuDepthBuffer& scratch, const RasterPass& pass, CpuFootprint& footprint);
 
 // Draws the write whose footprint this is into `buffer` (the pass' resolution): per pixel, the
 // nearer of the stored and the footprint's value; tile bounds stay exact.

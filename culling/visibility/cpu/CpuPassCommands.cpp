@@ -99,50 +99,28 @@ std::size_t fillChunk(const CpuCommandList& list, const CpuCommand& c, std::uint
 // farthest key is nearer than everything stored there is fully visible; a write whose nearest is
 // at or behind everything stored changes nothing. Both are what drawing its triangles one by one
 // would find (each triangle is decided by the same tiles), only sooner.
-// The screen extent of a box (in its own frame) through a matrix: x, y, key ranges of its corners.
-struct ScreenExtent {
-  double minX = raster_detail::kInf, minY = raster_detail::kInf, minK = raster_detail::kInf;
-  double maxX = -raster_detail::kInf, maxY = -raster_detail::kInf, maxK = -raster_detail::kInf;
-  [[nodiscard]] bool finite() const {
-    return std::isfinite(minX + maxX + minY + maxY + minK + maxK);
-  }
-};
-void extend(ScreenExtent& e, const ScreenMatrix& toScreen, const Eigen::AlignedBox3d& box) {
-  for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
-    const Eigen::Vector3d p = toScreen.leftCols<3>() * corner + toScreen.col(3);
-    e.minX = std::min(e.minX, p.x()), e.maxX = std::max(e.maxX, p.x());
-    e.minY = std::min(e.minY, p.y()), e.maxY = std::max(e.maxY, p.y());
-    e.minK = std::min(e.minK, p.z()), e.maxK = std::max(e.maxK, p.z());
-  }
-}
-
-// The pixels of the buffer an extent may reach: a pixel more on each side than any of its
-// triangles' pixel boxes (their vertices go through the same matrix, each rounded a little
-// differently). False when it reaches none.
-bool pixelsOf(const ScreenExtent& e, const RasterPass& pass, PixelRect& rect) {
-  const double m = pass.marginPx + 1.0;
-  rect.x0 = static_cast<int>(std::max(0.0, std::floor(e.minX - m) - 1.0));
-  rect.y0 = static_cast<int>(std::max(0.0, std::floor(e.minY - m) - 1.0));
-  const double last = pass.resolution - 1;
-  const double fx1 = std::min(last, std::ceil(e.maxX + m));
-  const double fy1 = std::min(last, std::ceil(e.maxY + m));
-  if (fx1 < rect.x0 || fy1 < rect.y0) return false;
-  rect.x1 = static_cast<int>(fx1), rect.y1 = static_cast<int>(fy1);
-  return true;
-}
-
 bool decidedByBounds(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenMatrix& toScreen,
                      const Eigen::AlignedBox3d& box, CpuCommand::Role role) {
   if (box.isEmpty()) return false;
-  ScreenExtent e;
-  extend(e, toScreen, box);
-  if (!e.finite()) return false;
-  PixelRect rect;
-  if (!pixelsOf(e, pass, rect)) return true;  // off-screen: no triangle of it has a pixel
-  const double minK = e.minK, maxK = e.maxK;
-  const int x0 = rect.x0, y0 = rect.y0;
-  const int x1 = rect.x1, y1 = rect.y1;
+  double minX = raster_detail::kInf, minY = minX, minK = minX;
+  double maxX = -raster_detail::kInf, maxY = maxX, maxK = maxX;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
+    const Eigen::Vector3d p = toScreen.leftCols<3>() * corner + toScreen.col(3);
+    minX = std::min(minX, p.x()), maxX = std::max(maxX, p.x());
+    minY = std::min(minY, p.y()), maxY = std::max(maxY, p.y());
+    minK = std::min(minK, p.z()), maxK = std::max(maxK, p.z());
+  }
+  if (!std::isfinite(minX + maxX + minY + maxY + minK + maxK)) return false;
+  // A pixel more on each side and keys widened far beyond the rounding of the transforms (the
+  // triangles' vertices go through the same matrix, each rounded a little differently).
+  const double m = pass.marginPx + 1.0;
+  const int x0 = static_cast<int>(std::max(0.0, std::floor(minX - m) - 1.0));
+  const int y0 = static_cast<int>(std::max(0.0, std::floor(minY - m) - 1.0));
+  const double last = pass.resolution - 1;
+  const double fx1 = std::min(last, std::ceil(maxX + m)), fy1 = std::min(last, std::ceil(maxY + m));
+  if (fx1 < x0 || fy1 < y0) return true;  // off-screen: no triangle of it has a pixel
+  const int x1 = static_cast<int>(fx1), y1 = static_cast<int>(fy1);
   const double slack = 1e-9 * (1.0 + std::abs(minK) + std::abs(maxK));
   const bool test = role == CpuCommand::Role::Test;
   const double shift = pass.conservative ? (test ? pass.depthEpsilon : -pass.depthEpsilon)
@@ -204,23 +182,6 @@ void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandL
 }
 
 }  // namespace
-
-PixelRect pixelsReachedBy(const CpuCommandList& list, const CpuCommand& c,
-                          const RasterPass& raster) {
-  const PixelRect whole{0, 0, raster.resolution - 1, raster.resolution - 1};
-  ScreenExtent e;
-  if (c.source == CpuCommand::Source::Boxes) {
-    for (std::uint32_t b = 0; b < c.count; ++b)
-      extend(e, cubeToScreen(c.toScreen, list.boxes[c.first + b]), kUnitCube);
-  } else {
-    if (c.meshBox.isEmpty()) return whole;
-    extend(e, c.toScreen, c.meshBox);
-  }
-  if (!e.finite()) return whole;
-  PixelRect rect;
-  if (!pixelsOf(e, raster, rect)) return PixelRect{};
-  return rect;
-}
 
 void runWrite(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandList& list,
               const CpuCommand& c, RasterWork& work) {

@@ -79,13 +79,6 @@ struct CpuCommandList {
 void runPass(CpuDepthBuffer& buffer, const CpuPass& pass, const CpuCommandList& list,
              std::uint8_t* answers, RasterWork& work,
              std::span<const CpuFootprint* const> footprints = {});
-// Pixels x0..x1, y0..y1 (inclusive; empty when x1 < x0).
-struct PixelRect {
-  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-};
-// A rectangle holding every pixel the command's triangles can reach in a pass of `raster`.
-[[nodiscard]] PixelRect pixelsReachedBy(const CpuCommandList& list, const CpuCommand& c,
-                                        const RasterPass& raster);
 // Rasterises one write command of `list` into `buffer`.
 void runWrite(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandList& list,
               const CpuCommand& c, RasterWork& work);

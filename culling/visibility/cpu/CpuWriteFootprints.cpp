@@ -10,10 +10,11 @@ namespace cdb {
 namespace {
 
 // Writes that may have a footprint: those of many triangles (a box is six drawn). A footprint
-// costs a scan of the buffer's tiles and a merge of every tile it reaches at each draw, which
-// only pays where rasterising means setting up many triangles: on env1's node boxes at 1200 px
-// (a few large boxes per object) footprints made cullide_bvh 1.4x slower, on env2's dragons
-// (47,794 triangles each) they made cullide 1.8x faster.
+// costs a copy of every tile it reaches and a merge of each at every draw, which only pays where
+// rasterising means setting up many triangles. Taken for every list of over four boxes (and
+// scanning all of the scratch buffer's tiles), footprints made cullide_bvh 1.17x slower on
+// env1's node boxes (a few large boxes per object); on env2's dragons (47,794 triangles each)
+// they made cullide 1.8x faster.
 constexpr std::uint32_t kManyTriangles = 384;
 bool mayShare(const CpuCommand& c) {
   if (c.role != CpuCommand::Role::Write) return false;
@@ -179,12 +180,8 @@ void CpuWriteFootprints::build(const CpuCommandList& list, Entry& entry, Scratch
     scratch.buffer.clear(clearValue);
     scratch.resolution = pass.resolution, scratch.clearValue = clearValue, scratch.clean = true;
   }
-  const CpuCommand& c = list.commands[entry.builder];
-  runWrite(scratch.buffer, pass, list, c, work);
-  const PixelRect reach = pixelsReachedBy(list, c, pass);
-  constexpr int kTile = CpuDepthBuffer::kTile;
-  takeFootprint(scratch.buffer, pass, reach.x0 / kTile, reach.y0 / kTile, reach.x1 / kTile,
-                reach.y1 / kTile, entry.footprint);
+  runWrite(scratch.buffer, pass, list, list.commands[entry.builder], work);
+  takeFootprint(scratch.buffer, pass, entry.footprint);
 }
 
 }  // namespace cdb
