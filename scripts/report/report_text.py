@@ -4,7 +4,7 @@ and with several backends what depends on the cost model."""
 from .backends import counter_table, ratio_table, statements
 from .comparison import REFERENCE, comparison_markdown, thesis_position_summary
 from .findings import CLOSE, FALLING, RISING
-from .runs import backend_of, describe_backend, describe_machine
+from .runs import backend_of, describe_backend, describe_machine, frames_file
 from .statistics import LEVEL, RESAMPLES, SEED
 from .thesis import TABLE_OF, THESIS_HARDWARE
 
@@ -189,7 +189,7 @@ def _environment(s, result_dir, layout, cost_models):
     if cmp.layout.other_fixed_values:
         out.append(f"- Note: also run at {cmp.layout.fixed_dimension} "
                    f"{', '.join(map(str, cmp.layout.other_fixed_values))}; tabulated: {cmp.layout.describe_fixed()} "
-                   f"(all cells are in {folder}/frames.csv).")
+                   f"(all cells are in {folder}/{frames_file(run.folder).name}).")
     if run.notes or cmp.layout.other_fixed_values:
         out.append("")
     out += ["### Tables", "", f"Also in `{folder}/comparison.md` and `{folder}/comparison.csv`. "

@@ -105,7 +105,7 @@ def read_environment(result_dir: Path, name: str, backend: str = "") -> Environm
     if not folder.is_dir():
         run.status = "missing"
         return run
-    frames_csv, tables_csv, meta_json = folder / "frames.csv", folder / "tables.csv", folder / "meta.json"
+    frames_csv, tables_csv, meta_json = frames_file(folder), folder / "tables.csv", folder / "meta.json"
     if meta_json.exists():
         run.meta = _read_meta(meta_json)
 
@@ -140,6 +140,13 @@ def read_environment(result_dir: Path, name: str, backend: str = "") -> Environm
     elif run.environment != name:
         run.notes.append(f"folder {name} holds environment {run.environment}")
     return run
+
+
+def frames_file(folder: Path) -> Path:
+    """The folder's frames.csv, or its gzip-compressed frames.csv.gz when only that is there (how committed
+    results keep it); frames.csv when neither exists."""
+    plain, packed = folder / "frames.csv", folder / "frames.csv.gz"
+    return packed if packed.exists() and not plain.exists() else plain
 
 
 def _progress(folder):

@@ -1,6 +1,7 @@
 """Strict CSV reading shared by the run and thesis readers: typed columns, line-numbered errors."""
 
 import csv
+import gzip
 import math
 from pathlib import Path
 
@@ -16,9 +17,10 @@ def read_typed_csv(path: Path, required, int_columns=(), float_columns=(), choic
 
     Extra columns are kept as strings so that a runner adding columns does not break the report.
     Times must be finite and non-negative: a NaN or negative time is a broken measurement, not data.
+    A path ending in .gz is read through gzip (committed results keep frames.csv compressed).
     """
     try:
-        with open(path, newline="", encoding="utf-8") as f:
+        with _open_text(path) as f:
             reader = csv.reader(f)
             header = next(reader, None)
             if header is None:
@@ -47,7 +49,7 @@ def read_typed_csv(path: Path, required, int_columns=(), float_columns=(), choic
                                          f"{', '.join(allowed)}, got {record.get(name)!r}")
                 rows.append(record)
             return rows
-    except (OSError, UnicodeDecodeError, csv.Error) as e:
+    except (OSError, EOFError, UnicodeDecodeError, csv.Error) as e:
         raise InputError(f"{path}: cannot read: {e}") from e
 
 
@@ -66,3 +68,10 @@ def _parse_time(path, line, name, text):
     if not math.isfinite(value) or value < 0:
         raise InputError(f"{path}:{line}: column {name}: expected a finite non-negative number, got {text!r}")
     return value
+
+
+def _open_text(path: Path):
+    """`path` for reading as UTF-8 CSV text, decompressed when its name ends in .gz."""
+    if Path(path).suffix == ".gz":
+        return gzip.open(path, "rt", newline="", encoding="utf-8")
+    return open(path, newline="", encoding="utf-8")

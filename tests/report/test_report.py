@@ -1,6 +1,7 @@
 """scripts/report.py on a tiny synthetic result folder with known numbers (env1 and env3; env2 absent)."""
 
 import csv
+import gzip
 import json
 import shutil
 import struct
@@ -12,6 +13,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 REPORT = ROOT / "scripts" / "report.py"
+PACK = ROOT / "scripts" / "pack-results.sh"
 THESIS = ROOT / "results" / "thesis" / "tables.csv"
 
 sys.path.insert(0, str(ROOT / "scripts"))
@@ -424,6 +426,83 @@ class ReportOnAnOlderRunWithOnlyTablesCsv(InFreshResultDir):
         self.assertAlmostEqual(float(rows[("cd_time_ms", "average", "cullide")]["50"]), 5.0, places=4)
         self.assertAlmostEqual(float(rows[("cd_time_ms", "maximum", "ours")]["50"]), 3.25, places=4)
         self.assertIn("frames.csv is missing: tables from tables.csv", (self.dir / "REPORT.md").read_text())
+
+
+class ReportOnCompressedFrames(InFreshResultDir):
+    """Committed results keep frames.csv gzip-compressed as frames.csv.gz; the report reads either."""
+
+    def compress(self, folder):
+        plain = folder / "frames.csv"
+        (folder / "frames.csv.gz").write_bytes(gzip.compress(plain.read_bytes()))
+        plain.unlink()
+
+    def test_the_same_tables_from_frames_csv_gz(self):
+        write_run(self.dir / "env1", "env1", env1_rows())
+        self.assertEqual(run_report(self.dir).returncode, 0)
+        expected = (self.dir / "env1" / "comparison.csv").read_text()
+        self.compress(self.dir / "env1")
+        result = run_report(self.dir)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual((self.dir / "env1" / "comparison.csv").read_text(), expected)
+        self.assertNotIn("frames.csv is missing", (self.dir / "REPORT.md").read_text())
+
+    def test_frames_csv_wins_over_a_stale_frames_csv_gz(self):
+        write_run(self.dir / "env3", "env3", env3_rows())
+        (self.dir / "env3" / "frames.csv.gz").write_bytes(gzip.compress(b"not,a,frames,file\n"))
+        result = run_report(self.dir)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = read_csv_rows(self.dir / "env3" / "comparison.csv")
+        self.assertAlmostEqual(float(rows[("cd_time_ms", "average", "cullide")]["50"]), 5.0, places=4)
+
+    def test_a_truncated_frames_csv_gz_is_a_one_line_failure(self):
+        write_run(self.dir / "env1", "env1", env1_rows())
+        self.compress(self.dir / "env1")
+        packed = self.dir / "env1" / "frames.csv.gz"
+        packed.write_bytes(packed.read_bytes()[:200])
+        result = run_report(self.dir)
+        self.assertNotEqual(result.returncode, 0)
+        lines = result.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 1, result.stderr)
+        self.assertIn("frames.csv.gz", lines[0])
+        self.assertFalse((self.dir / "REPORT.md").exists())
+
+
+class PackedResults(InFreshResultDir):
+    """scripts/pack-results.sh RUN DEST keeps what the report reads (frames compressed) and leaves the rest."""
+
+    def pack(self, dest):
+        return subprocess.run(["bash", str(PACK), str(self.dir), str(dest)], capture_output=True, text=True,
+                              timeout=120)
+
+    def test_the_packed_folder_reports_the_same_tables(self):
+        write_run(self.dir / "cpu" / "env1", "env1", env1_rows(), backend="cpu")
+        write_run(self.dir / "gl-queries" / "env3", "env3", env3_rows())
+        for folder in (self.dir / "cpu" / "env1" / "recordings", self.dir / "cpu" / "env1" / "cells"):
+            folder.mkdir()
+            (folder / "r0.bin").write_bytes(b"poses")
+        (self.dir / "cpu" / "env1" / "shard-1-of-2.json").write_text("{}")
+        self.assertEqual(run_report(self.dir).returncode, 0)
+        packed = self.tmp / "packed"
+        result = self.pack(packed)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(sorted(p.name for p in (packed / "cpu" / "env1").iterdir()),
+                         ["frames.csv.gz", "meta.json", "shard-1-of-2.json"])
+        self.assertEqual(sorted(p.name for p in (packed / "gl-queries" / "env3").iterdir()),
+                         ["frames.csv.gz", "meta.json"])
+        self.assertEqual(run_report(packed).returncode, 0)
+        for env in ("cpu/env1", "gl-queries/env3"):
+            self.assertEqual((packed / env / "comparison.csv").read_text(),
+                             (self.dir / env / "comparison.csv").read_text(), env)
+
+    def test_an_unfinished_run_is_refused_and_nothing_is_written(self):
+        write_run(self.dir / "env1", "env1", env1_rows())
+        (self.dir / "env3").mkdir()
+        (self.dir / "env3" / "run.json").write_text('{"plan": []}')
+        packed = self.tmp / "packed"
+        result = self.pack(packed)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn("env3 has no frames.csv", result.stderr)
+        self.assertFalse(packed.exists())
 
 
 class ReportOnBadInput(InFreshResultDir):

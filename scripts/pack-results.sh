@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Copies a finished reproduction run into the form results/ commits: per environment folder
+# (RUN/envN or RUN/<backend>/envN) frames.csv compressed to frames.csv.gz, meta.json and the
+# shares' shard-*.json. Left behind: recordings/ (the recorded poses, which a rerun records again
+# from the same seeds), cells/ and run.json (what a stopped run resumes from). scripts/report.py
+# reads frames.csv.gz as it reads frames.csv, so the report can be written into DEST afterwards:
+#
+#   scripts/pack-results.sh RUN DEST && scripts/report.py DEST --primary cpu
+#
+# An environment folder without frames.csv (a run still going, or stopped) is refused, so DEST
+# never holds half a run. DEST must not exist yet.
+set -euo pipefail
+
+die() {
+  echo "pack-results: $*" >&2
+  exit 1
+}
+
+[[ $# -eq 2 ]] || die "usage: $0 RUN DEST"
+run=$1
+dest=$2
+[[ -d $run ]] || die "$run: not a folder"
+[[ ! -e $dest ]] || die "$dest already exists; pack into a new folder"
+command -v gzip >/dev/null || die "gzip is needed"
+
+mapfile -t envs < <(cd "$run" && find . -mindepth 1 -maxdepth 2 -type d -name 'env*' | sed 's|^\./||' | sort)
+((${#envs[@]})) || die "$run holds no envN folder (expected RUN/envN or RUN/<backend>/envN)"
+for env in "${envs[@]}"; do
+  [[ -s $run/$env/frames.csv ]] || die "$run/$env has no frames.csv: the run is not finished"
+  [[ -s $run/$env/meta.json ]] || die "$run/$env has no meta.json: the run is not finished"
+done
+
+mkdir -p "$dest"
+for env in "${envs[@]}"; do
+  mkdir -p "$dest/$env"
+  # -n: no name or time stamp in the header, so the same frames give the same bytes.
+  gzip -9 -n -c "$run/$env/frames.csv" > "$dest/$env/frames.csv.gz"
+  cp "$run/$env/meta.json" "$dest/$env/"
+  find "$run/$env" -maxdepth 1 -name 'shard-*.json' -exec cp {} "$dest/$env/" \;
+  echo "pack-results: $env: $(wc -l < "$run/$env/frames.csv") lines, frames.csv.gz $(du -k "$dest/$env/frames.csv.gz" | cut -f1) KiB"
+done
+echo "pack-results: wrote $dest ($(du -sk "$dest" | cut -f1) KiB)"
