@@ -23,7 +23,7 @@ dest=$2
 [[ ! -e $dest ]] || die "$dest already exists; pack into a new folder"
 command -v gzip >/dev/null || die "gzip is needed"
 
-mapfile -t envs < <(cd "$run" && find . -mindepth 1 -maxdepth 2 -type d -name 'env*' | sed 's|^\./||' | sort)
+mapfile -t envs < <(cd "$run" && find -L . -mindepth 1 -maxdepth 2 -type d -name 'env*' | sed 's|^\./||' | sort)
 ((${#envs[@]})) || die "$run holds no envN folder (expected RUN/envN or RUN/<backend>/envN)"
 for env in "${envs[@]}"; do
   [[ -s $run/$env/frames.csv ]] || die "$run/$env has no frames.csv: the run is not finished"
