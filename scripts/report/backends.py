@@ -56,7 +56,9 @@ class Ordering:
     """How often `first` is faster than `second` (lower average CD time) per backend."""
     first: str
     second: str
-    counts: dict          # backend -> (faster columns, slower columns, measured columns, clear columns)
+    # backend -> (faster columns, slower columns, measured columns, clear columns): clear columns are
+    # those of the backend's direction whose 95% interval of first/second is clear of 1 on that side.
+    counts: dict
 
     def direction(self, backend):
         faster, slower, _, _ = self.counts[backend]
@@ -137,7 +139,7 @@ def _orderings(cm):
         counts = {}
         for backend, cmp in cm.comparisons.items():
             cells = _cells(cmp)
-            faster = slower = measured = clear = 0
+            faster = slower = measured = clear_faster = clear_slower = 0
             for column in cmp.layout.columns:
                 a = cells.get((first, *cmp.layout.cell(column)))
                 b = cells.get((second, *cmp.layout.cell(column)))
@@ -147,8 +149,13 @@ def _orderings(cm):
                 faster += a.average < b.average
                 slower += a.average > b.average
                 est = ratio_estimate(*paired(a.repeat_means, b.repeat_means)) if a.repeat_means else None
-                clear += bool(est and est.has_interval and (est.hi < 1 or est.lo > 1))
+                if est and est.has_interval:
+                    clear_faster += est.hi < 1
+                    clear_slower += est.lo > 1
             if measured:
+                # Clear columns count in the direction the backend's columns mostly go (none when tied), so
+                # that a column going the other way is not counted as support.
+                clear = clear_faster if faster > slower else clear_slower if slower > faster else 0
                 counts[backend] = (faster, slower, measured, clear)
         if counts:
             cm.orderings.append(Ordering(first, second, counts))

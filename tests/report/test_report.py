@@ -428,6 +428,27 @@ class ReportOnAnOlderRunWithOnlyTablesCsv(InFreshResultDir):
         self.assertIn("frames.csv is missing: tables from tables.csv", (self.dir / "REPORT.md").read_text())
 
 
+class CostModelCountsClearColumnsPerDirection(InFreshResultDir):
+    """A column that goes against a backend's ordering, clearly, is not counted as support for it."""
+
+    def test_a_clear_column_of_the_other_direction_is_not_counted(self):
+        cullide = THESIS_AVG["cullide"]
+        # cpu: quick_cullide 0.8x cullide at 500-700 px and 1.25x at 800 (the same noise for both, so every
+        # interval of quick_cullide/cullide is clear of 1, on either side); gl-queries: 1.5x at 500 and 800.
+        cpu = {"cullide": cullide, "ours": THESIS_AVG["ours"],
+               "quick_cullide": {k: v * (1.25 if k == 800 else 0.8) for k, v in cullide.items()}}
+        glq = {"cullide": {k: cullide[k] for k in (500, 800)}, "ours": {k: THESIS_AVG["ours"][k] for k in (500, 800)},
+               "quick_cullide": {k: cullide[k] * 1.5 for k in (500, 800)}}
+        write_run(self.dir / "cpu" / "env1", "env1", backend_rows("cpu", cpu), backend="cpu")
+        write_run(self.dir / "gl-queries" / "env1", "env1", backend_rows("gl-queries", glq), backend="gl-queries")
+        result = run_report(self.dir)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        report = (self.dir / "REPORT.md").read_text()
+        self.assertIn("- cullide is slower than quick_cullide on cpu at 3 of 4 resolutions (3 with the 95% interval "
+                      "of the ratio clear of 1); faster on gl-queries at 2 of 2 resolutions (2 with the 95% "
+                      "interval of the ratio clear of 1).", report)
+
+
 class ReportOnCompressedFrames(InFreshResultDir):
     """Committed results keep frames.csv gzip-compressed as frames.csv.gz; the report reads either."""
 
