@@ -1,5 +1,7 @@
 #include "harness/MachineInfo.h"
 
+#include "harness/BuildCommit.h"
+
 #include "render/HeadlessGlContext.h"
 
 #include <sys/utsname.h>
@@ -13,9 +15,6 @@
 #include <memory>
 #include <thread>
 
-#ifndef CDBENCH_SOURCE_DIR
-#define CDBENCH_SOURCE_DIR "."
-#endif
 #ifndef CDBENCH_BUILD_TYPE
 #define CDBENCH_BUILD_TYPE "unknown"
 #endif
@@ -62,16 +61,15 @@ MachineInfo probeMachine() {
   if (::uname(&u) == 0) m.os = std::string(u.sysname) + " " + u.release + " " + u.machine;
   m.compiler = __VERSION__;
   m.buildType = CDBENCH_BUILD_TYPE;
-  const std::string dir = CDBENCH_SOURCE_DIR;
-  m.gitCommit = commandOutput("git -C '" + dir + "' rev-parse HEAD 2>/dev/null");
-  if (m.gitCommit.empty()) {
-    m.gitCommit = "unknown";
-  } else if (!commandOutput("git -C '" + dir +
-                           "' status --porcelain --untracked-files=no -- . ':(exclude)results' 2>/dev/null")
+  m.gitCommit = buildCommit();
+  m.runTreeCommit = commandOutput("git rev-parse HEAD 2>/dev/null");
+  if (m.runTreeCommit.empty()) {
+    m.runTreeCommit = "unknown";
+  } else if (!commandOutput("git status --porcelain --untracked-files=no -- ':(top)' "
+                            "':(top,exclude)results' 2>/dev/null")
                   .empty()) {
-    // Result files a run writes into results/ (the quick reproduction's, for one) do not make the
-    // code that measured differ from the commit.
-    m.gitCommit += "+dirty";
+    // As cmake/BuildCommit.cmake: result files written into results/ change no code.
+    m.runTreeCommit += "+dirty";
   }
   return m;
 }
@@ -79,7 +77,8 @@ MachineInfo probeMachine() {
 nlohmann::json toJson(const MachineInfo& m) {
   return {{"hostname", m.hostname},     {"cpu", m.cpuModel},       {"logical_cores", m.logicalCores},
           {"memory_gib", m.memoryGiB},  {"os", m.os},              {"compiler", m.compiler},
-          {"build_type", m.buildType},  {"git_commit", m.gitCommit}};
+          {"build_type", m.buildType},  {"git_commit", m.gitCommit},
+          {"run_tree_commit", m.runTreeCommit}};
 }
 
 std::string utcTimestamp() {

@@ -14,7 +14,12 @@ struct MachineInfo {
   std::string os;
   std::string compiler;
   std::string buildType;
-  std::string gitCommit;  // "unknown" outside a checkout; "+dirty" appended when modified
+  // What measured: the commit the binary was built from (buildCommit()).
+  std::string gitCommit;
+  // The git tree the run was started in (the working directory: configs and scripts come from
+  // it), "+dirty" appended when its tracked files differ from its HEAD, "unknown" outside one. A
+  // binary kept from an earlier commit and run in a newer tree records both.
+  std::string runTreeCommit;
 };
 
 [[nodiscard]] MachineInfo probeMachine();

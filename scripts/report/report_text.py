@@ -147,7 +147,7 @@ def _machines(sections):
         out.append(f"- {prefix}Machine: {machine}")
         out.append(f"- {prefix}Visibility backend: {backend}")
         out.append(f"- {prefix}GL renderer: {gl}" if gl_used else f"- {prefix}GL: not opened by this run")
-        out.append(f"- {prefix}Commit: `{commit}`")
+        out.append(f"- {prefix}Commit: {commit}")
     out.append("")
     return out
 

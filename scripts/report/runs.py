@@ -208,7 +208,8 @@ def _read_meta(path):
 
 
 def describe_machine(meta):
-    """(machine line, GL line, commit) for a meta.json, with 'unknown' where a field is absent."""
+    """(machine line, GL line, commit text) for a meta.json, with 'unknown' where a field is absent;
+    the commit text also names the tree the run started in where that is not the binary's commit."""
     m, gl = meta.get("machine", {}), meta.get("gl", {})
     cpu = m.get("cpu") or "unknown CPU"
     cores = m.get("logical_cores")
@@ -226,7 +227,11 @@ def describe_machine(meta):
     if gl.get("vendor"):
         gl_line += f" ({gl['vendor']}"
         gl_line += f", EGL {gl['platform']})" if gl.get("platform") else ")"
-    commit = m.get("git_commit") or meta.get("commit") or "unknown"
+    commit = f"`{m.get('git_commit') or meta.get('commit') or 'unknown'}`"
+    tree = m.get("run_tree_commit")
+    if tree and f"`{tree}`" != commit:
+        # A binary kept from one commit and run in the tree of another: both are part of the run.
+        commit = f"binary built from {commit}, run in the tree at `{tree}`"
     return machine, gl_line, commit
 
 

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/BuildCommit.h"
 #include "harness/FrameCsv.h"
 #include "tests/common/FreshTempDir.h"
 #include "tests/common/ShellCommand.h"
@@ -65,6 +66,49 @@ TEST(Cli, Env3RunWritesFramesAndMetaWithNoFalseNegatives) {
   double framesCd = 0;
   for (const auto& row : rows) framesCd += row.cdMs / 1e3;
   EXPECT_NEAR(cd, framesCd, 1e-3 + 1e-3 * framesCd);
+}
+
+// meta.json names what measured (the commit the binary was built from) and, beside it, the tree
+// the run was started in: a binary kept from one commit and run in another tree records both.
+TEST(Cli, MetaNamesTheBuildCommitAndTheTreeTheRunStartedIn) {
+  const std::string built(cdb::buildCommit());
+  const std::string hex = "0123456789abcdef";
+  ASSERT_TRUE(built == "unknown" || (built.size() >= 40 && built.find_first_not_of(hex) >= 40 &&
+                                     (built.size() == 40 || built.substr(40) == "+dirty")))
+      << built;
+  const auto metaOf = [](const std::filesystem::path& out) {
+    std::ifstream in(out / "meta.json");
+    return nlohmann::json::parse(in);
+  };
+  const std::string run = "run " + kConfigs + "env3.yaml --strategies cullide --objects 10 "
+                          "--frames 1 --repeats 1 --resolutions 64 --quiet --no-truth --out ";
+
+  // A tree of its own, one commit, which is not the binary's.
+  const auto tree = tempDir("commit_tree");
+  const auto made = cdb::test::runShellCommand(
+      "cd '" + tree.string() + "' && git init -q && git -c user.name=cdbench "
+      "-c user.email=cdbench@localhost commit -q --allow-empty -m tree && git rev-parse HEAD 2>&1");
+  ASSERT_EQ(made.exitCode, 0) << made.output;
+  std::string treeHead = made.output;
+  while (!treeHead.empty() && (treeHead.back() == '\n' || treeHead.back() == ' ')) treeHead.pop_back();
+  ASSERT_EQ(treeHead.size(), 40u) << made.output;
+  auto r = cdb::test::runShellCommand("cd '" + tree.string() + "' && " + CDBENCH_BINARY_DIR +
+                                      "/cdbench " + run + "out 2>&1");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto meta = metaOf(tree / "out");
+  EXPECT_EQ(meta["machine"]["git_commit"], built);
+  EXPECT_EQ(meta["commit"], built);
+  EXPECT_EQ(meta["machine"]["run_tree_commit"], treeHead);
+
+  // Outside any git tree: the build commit still, the tree unknown.
+  const auto bare = tempDir("commit_bare");
+  r = cdb::test::runShellCommand("cd '" + bare.string() + "' && GIT_CEILING_DIRECTORIES='" +
+                                 bare.parent_path().string() + "' " + CDBENCH_BINARY_DIR +
+                                 "/cdbench " + run + "out 2>&1");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  meta = metaOf(bare / "out");
+  EXPECT_EQ(meta["machine"]["git_commit"], built);
+  EXPECT_EQ(meta["machine"]["run_tree_commit"], "unknown");
 }
 
 TEST(Cli, MalformedConfigExitsTwoWithOneLine) {

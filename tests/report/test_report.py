@@ -294,6 +294,22 @@ def backend_rows(backend, bases):
     return rows
 
 
+class CommitLine(unittest.TestCase):
+    """The report's commit: the binary's, and the tree the run started in where that differs."""
+
+    def commit(self, machine):
+        return runs.describe_machine({"machine": machine})[2]
+
+    def test_the_binarys_commit(self):
+        self.assertEqual(self.commit({"git_commit": "aaa1"}), "`aaa1`")
+        self.assertEqual(self.commit({"git_commit": "aaa1", "run_tree_commit": "aaa1"}), "`aaa1`")
+        self.assertEqual(self.commit({}), "`unknown`")
+
+    def test_a_binary_run_in_another_tree_names_both(self):
+        self.assertEqual(self.commit({"git_commit": "aaa1", "run_tree_commit": "bbb2+dirty"}),
+                         "binary built from `aaa1`, run in the tree at `bbb2+dirty`")
+
+
 class ReportOnBackendFolders(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
