@@ -9,11 +9,10 @@
 #      through the instrumented binary for what they check of timing, sharding or placement
 #      (the release stage runs them; under ASan the cpu backend's loops take minutes there).
 #      What it leaves out is listed once, in tests/release_only_tests.txt (ctest label
-#      release-only; the same patterns filter the leak-checked re-runs).
-#      Leaks: the GL
-#      suites run without leak detection (Mesa's llvmpipe leaks ~240 bytes from a driver it has
-#      already unloaded, so no suppression can name it); the GL-free suites run again with it on.
-#      Then a tiny env3 run of the sanitized binary.
+#      release-only). Leaks: the GL-free suites (scenes, exact) run with leak detection on, the GL
+#      suites without (Mesa's llvmpipe leaks ~240 bytes from a driver it has already unloaded, so
+#      no suppression can name it; tests/CMakeLists.txt sets it per suite). Then a tiny env3 run
+#      of the sanitized binary.
 #   3. fuzzing (build-fuzz/, clang + libFuzzer): each reader for CDBENCH_FUZZ_SECONDS (20) seconds.
 # CDBENCH_SKIP_SANITIZERS=1 / CDBENCH_SKIP_FUZZ=1 leave a stage out (e.g. for a quick local run).
 set -euo pipefail
@@ -29,18 +28,10 @@ stage "release build"
 ctest --preset release -j "$jobs"
 stage "release ctest"
 
-# The tests the sanitizer stage leaves to this one: tests/release_only_tests.txt, which
-# tests/CMakeLists.txt turns into the ctest label release-only; here, as a gtest negative filter.
-release_only_gtest=$(grep -v -e '^#' -e '^[[:space:]]*$' tests/release_only_tests.txt | paste -sd: -)
-
 if [[ "${CDBENCH_SKIP_SANITIZERS:-0}" != 1 ]]; then
   bash scripts/build.sh debug
   stage "sanitizer build"
   ctest --preset debug -j "$jobs" -LE release-only
-  for suite in test_scenes test_exact; do
-    ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp \
-      "build-asan/tests/$suite" --gtest_brief=1 --gtest_filter="-$release_only_gtest"
-  done
   smoke=build-asan/smoke
   rm -rf "$smoke"
   ASAN_OPTIONS=detect_leaks=0 build-asan/cdbench run configs/env3.yaml --objects 10 --frames 3 --resolutions 64 --repeats 1 \
