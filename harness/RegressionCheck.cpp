@@ -109,8 +109,9 @@ void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const Mach
            report.timedBackends.end();
   };
   std::size_t stale = 0, untimed = 0;
-  for (const auto& [key, ratio] : baseline.ratios) {
-    if (!timed(ratio.backend)) {
+  for (const auto& entry : baseline.ratios) {
+    const std::string& key = entry.first;  // a name, not a binding: lambdas capture it in clang 14
+    if (!timed(entry.second.backend)) {
       ++untimed;
     } else if (std::none_of(report.timing.begin(), report.timing.end(),
                             [&](const TimingRow& t) { return t.measured.key == key; })) {

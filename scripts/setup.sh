@@ -11,7 +11,7 @@ packages=(
   libhwy-dev libtbb-dev  # the CPU visibility backend: SIMD with runtime dispatch, worker threads
   libgtest-dev libgmock-dev libbenchmark-dev
   libbenchmark-tools python3-scipy  # Google Benchmark's tools/compare.py (scripts/bench.sh)
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev  # the sanitizer tree and the fuzz targets
   python3 python3-matplotlib parallel
 )
 

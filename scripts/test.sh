@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set-up, build, and every test (ctest). What CI runs.
 #   1. release (build/): every test.
-#   2. sanitizers (build-asan/, preset debug, ASan+UBSan): every suite, with each parameterised
+#   2. sanitizers (build-asan/, preset debug: clang, ASan+UBSan): every suite, with each parameterised
 #      family cut to one representative (the ASan stage checks memory on every code path, the
 #      release stage checks the sweeps: every strategy runs against the truth on FewTori at 64)
 #      and the dragon scenes left out (minutes each under ASan; ObbTree.Dragon also asserts a
