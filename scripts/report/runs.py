@@ -227,12 +227,12 @@ def describe_machine(meta):
     if gl.get("vendor"):
         gl_line += f" ({gl['vendor']}"
         gl_line += f", EGL {gl['platform']})" if gl.get("platform") else ")"
-    commit = f"`{m.get('git_commit') or meta.get('commit') or 'unknown'}`"
+    built = m.get("git_commit") or meta.get("commit") or "unknown"
     tree = m.get("run_tree_commit")
-    if tree and f"`{tree}`" != commit:
+    if tree and tree != built:
         # A binary kept from one commit and run in the tree of another: both are part of the run.
-        commit = f"binary built from {commit}, run in the tree at `{tree}`"
-    return machine, gl_line, commit
+        return machine, gl_line, f"binary built from `{built}`, run in the tree at `{tree}`"
+    return machine, gl_line, f"`{built}`"
 
 
 def backend_of(meta):
