@@ -24,6 +24,50 @@ constexpr std::array<std::array<int, 6>, 6> kCubeFaces = {{
     {0, 2, 6, 0, 6, 4}, {1, 5, 7, 1, 7, 3}, {0, 4, 5, 0, 5, 1},
     {2, 3, 7, 2, 7, 6}, {0, 1, 3, 0, 3, 2}, {4, 6, 7, 4, 7, 5}}};
 
+// Which faces of a box decide its answer (in kCubeFaces order); the reason is below.
+std::array<bool, 6> decidingFaces(const ScreenMatrix& cubeToScreen, CpuCommand::Role role) {
+  std::array<bool, 6> keep{};
+  const bool test = role == CpuCommand::Role::Test;
+  for (int axis = 0; axis < 3; ++axis) {
+    // How the key changes going out through the + face of this axis.
+    const double outward = cubeToScreen(2, axis);
+    for (int positive = 0; positive < 2; ++positive) {
+      const double away = positive ? outward : -outward;  // > 0: the face looks away (back)
+      keep[2 * axis + positive] = away == 0.0 || (test ? away > 0.0 : away < 0.0);
+    }
+  }
+  return keep;
+}
+
+std::array<Eigen::Vector3d, 8> cubeCorners(const ScreenMatrix& cubeToScreen) {
+  std::array<Eigen::Vector3d, 8> corner;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d c((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
+    corner[i] = cubeToScreen.leftCols<3>() * c + cubeToScreen.col(3);
+  }
+  return corner;
+}
+
+// The deciding faces of a box as quads (conservative passes): each face's two triangles in
+// kCubeFaces share their first and third corner, so a, b, c of the first and the second's last
+// go around the face.
+std::size_t boxQuads(const ScreenMatrix& cubeToScreen, CpuCommand::Role role, ScreenQuad* out) {
+  const std::array<Eigen::Vector3d, 8> corner = cubeCorners(cubeToScreen);
+  const std::array<bool, 6> keep = decidingFaces(cubeToScreen, role);
+  std::size_t n = 0;
+  for (int f = 0; f < 6; ++f) {
+    if (!keep[f]) continue;
+    const auto& face = kCubeFaces[f];
+    const int around[4] = {face[0], face[1], face[2], face[5]};
+    for (int v = 0; v < 4; ++v) {
+      const Eigen::Vector3d& p = corner[around[v]];
+      out[n].x[v] = p.x(), out[n].y[v] = p.y(), out[n].k[v] = p.z();
+    }
+    ++n;
+  }
+  return n;
+}
+
 // The triangles of a box that decide its answer. A box is convex: along any line of sight the
 // faces facing away from the viewer are farthest and those facing it nearest, and each set covers
 // the box's whole outline. So in every pixel the farthest depth of the box over the part of the
@@ -32,27 +76,17 @@ constexpr std::array<std::array<int, 6>, 6> kCubeFaces = {{
 // normal) belong to both sets.
 std::size_t boxTriangles(const ScreenMatrix& cubeToScreen, CpuCommand::Role role,
                          ScreenTriangle* out) {
-  std::array<Eigen::Vector3d, 8> corner;
-  for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d c((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
-    corner[i] = cubeToScreen.leftCols<3>() * c + cubeToScreen.col(3);
-  }
-  const bool test = role == CpuCommand::Role::Test;
+  const std::array<Eigen::Vector3d, 8> corner = cubeCorners(cubeToScreen);
+  const std::array<bool, 6> keep = decidingFaces(cubeToScreen, role);
   std::size_t n = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    // How the key changes going out through the + face of this axis.
-    const double outward = cubeToScreen(2, axis);
-    for (int positive = 0; positive < 2; ++positive) {
-      const double away = positive ? outward : -outward;  // > 0: the face looks away (back)
-      const bool keep = away == 0.0 || (test ? away > 0.0 : away < 0.0);
-      if (!keep) continue;
-      const auto& face = kCubeFaces[2 * axis + positive];
-      for (int t = 0; t < 2; ++t, ++n)
-        for (int v = 0; v < 3; ++v) {
-          const Eigen::Vector3d& p = corner[face[3 * t + v]];
-          out[n].x[v] = p.x(), out[n].y[v] = p.y(), out[n].k[v] = p.z();
-        }
-    }
+  for (int f = 0; f < 6; ++f) {
+    if (!keep[f]) continue;
+    const auto& face = kCubeFaces[f];
+    for (int t = 0; t < 2; ++t, ++n)
+      for (int v = 0; v < 3; ++v) {
+        const Eigen::Vector3d& p = corner[face[3 * t + v]];
+        out[n].x[v] = p.x(), out[n].y[v] = p.y(), out[n].k[v] = p.z();
+      }
   }
   return n;
 }
@@ -149,6 +183,32 @@ ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox&
   return m;
 }
 
+// A box's deciding faces: as quads in conservative passes, as triangles in raw ones (whose
+// pixel-centre rule is a triangle's). True when a test finds an occluded sample.
+bool testBox(CpuDepthBuffer& buffer, const RasterPass& raster, const ScreenMatrix& cube,
+             CpuCommand::Role role, std::array<ScreenTriangle, kChunk>& chunk, RasterWork& work) {
+  if (raster.conservative) {
+    std::array<ScreenQuad, 6> quads;
+    const std::size_t n = boxQuads(cube, role, quads.data());
+    return testQuadsUntilOccluded(buffer, raster, std::span<const ScreenQuad>(quads.data(), n),
+                                  work) < n;
+  }
+  const std::size_t n = boxTriangles(cube, role, chunk.data());
+  return testTrianglesUntilOccluded(buffer, raster,
+                                    std::span<const ScreenTriangle>(chunk.data(), n), work) < n;
+}
+void writeBox(CpuDepthBuffer& buffer, const RasterPass& raster, const ScreenMatrix& cube,
+              CpuCommand::Role role, std::array<ScreenTriangle, kChunk>& chunk, RasterWork& work) {
+  if (raster.conservative) {
+    std::array<ScreenQuad, 6> quads;
+    const std::size_t n = boxQuads(cube, role, quads.data());
+    writeQuads(buffer, raster, std::span<const ScreenQuad>(quads.data(), n), work);
+    return;
+  }
+  const std::size_t n = boxTriangles(cube, role, chunk.data());
+  writeTriangles(buffer, raster, std::span<const ScreenTriangle>(chunk.data(), n), work);
+}
+
 void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandList& list,
              const CpuCommand& c, std::uint8_t* answers, RasterWork& work) {
   std::array<ScreenTriangle, kChunk> chunk;
@@ -156,9 +216,7 @@ void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandL
     for (std::uint32_t b = 0; b < c.count; ++b) {
       const ScreenMatrix cube = cubeToScreen(c.toScreen, list.boxes[c.first + b]);
       if (list.decideByBounds && decidedByBounds(buffer, raster, cube, kUnitCube, c.role)) continue;
-      const std::size_t n = boxTriangles(cube, c.role, chunk.data());
-      const std::span<const ScreenTriangle> tris(chunk.data(), n);
-      if (testTrianglesUntilOccluded(buffer, raster, tris, work) < n) {
+      if (testBox(buffer, raster, cube, c.role, chunk, work)) {
         answers[c.query + (c.answerEach ? b : 0)] = 0;
         if (!c.answerEach) return;
       }
@@ -190,8 +248,7 @@ void runWrite(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommand
     for (std::uint32_t b = 0; b < c.count; ++b) {
       const ScreenMatrix cube = cubeToScreen(c.toScreen, list.boxes[c.first + b]);
       if (list.decideByBounds && decidedByBounds(buffer, raster, cube, kUnitCube, c.role)) continue;
-      const std::size_t n = boxTriangles(cube, c.role, chunk.data());
-      writeTriangles(buffer, raster, std::span<const ScreenTriangle>(chunk.data(), n), work);
+      writeBox(buffer, raster, cube, c.role, chunk, work);
     }
     return;
   }

@@ -268,8 +268,9 @@ bool decidedByTiles(CpuDepthBuffer& buffer, const RasterPass& pass, const Triang
   return true;
 }
 
-HWY_INLINE bool testTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
-                             const ScreenTriangle& t, RasterWork& work) {
+template <class Piece>
+HWY_INLINE bool testTriangle(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
+                             RasterWork& work) {
   TriangleRaster r;
   if (!setupBounds(t, pass, RasterRole::Test, r)) return false;
   if (smallBox(pass, r)) return testSmall(buffer, pass, r, work);
@@ -278,12 +279,21 @@ HWY_INLINE bool testTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
   return testOne(buffer, pass, r, work);
 }
 
+template <class Piece>
+std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
+                              std::size_t count, RasterWork& work) {
+  for (std::size_t i = 0; i < count; ++i)
+    if (testTriangle(buffer, pass, pieces[i], work)) return i;
+  return count;
+}
 std::size_t TestUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                               const ScreenTriangle* triangles, std::size_t count,
                               RasterWork& work) {
-  for (std::size_t i = 0; i < count; ++i)
-    if (testTriangle(buffer, pass, triangles[i], work)) return i;
-  return count;
+  return testUntilOccluded(buffer, pass, triangles, count, work);
+}
+std::size_t TestQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
+                                   const ScreenQuad* quads, std::size_t count, RasterWork& work) {
+  return testUntilOccluded(buffer, pass, quads, count, work);
 }
 
 void TestEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
@@ -292,19 +302,28 @@ void TestEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriang
     if (testTriangle(buffer, pass, triangles[i], work)) fullyVisible[i] = 0;
 }
 
-void WriteAll(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
+template <class Piece>
+void writeAll(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
               std::size_t count, RasterWork& work) {
   TriangleRaster r;
   for (std::size_t i = 0; i < count; ++i) {
-    if (!setupBounds(triangles[i], pass, RasterRole::Write, r)) continue;
+    if (!setupBounds(pieces[i], pass, RasterRole::Write, r)) continue;
     if (smallBox(pass, r)) {
       writeSmall(buffer, pass, r, work);
       continue;
     }
     if (decidedByTiles(buffer, pass, r, RasterRole::Write)) continue;
-    setupCoverage(triangles[i], pass, RasterRole::Write, r);
+    setupCoverage(pieces[i], pass, RasterRole::Write, r);
     writeOne(buffer, pass, r, work);
   }
+}
+void WriteAll(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
+              std::size_t count, RasterWork& work) {
+  writeAll(buffer, pass, triangles, count, work);
+}
+void WriteQuads(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenQuad* quads,
+                std::size_t count, RasterWork& work) {
+  writeAll(buffer, pass, quads, count, work);
 }
 
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
@@ -319,6 +338,8 @@ namespace cdb {
 HWY_EXPORT(TestUntilOccluded);
 HWY_EXPORT(TestEach);
 HWY_EXPORT(WriteAll);
+HWY_EXPORT(TestQuadsUntilOccluded);
+HWY_EXPORT(WriteQuads);
 HWY_EXPORT(TargetName);
 
 std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
@@ -338,6 +359,17 @@ void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
 void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
                     std::span<const ScreenTriangle> triangles, RasterWork& work) {
   HWY_DYNAMIC_DISPATCH(WriteAll)(buffer, pass, triangles.data(), triangles.size(), work);
+}
+
+std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
+                                   std::span<const ScreenQuad> quads, RasterWork& work) {
+  return HWY_DYNAMIC_DISPATCH(TestQuadsUntilOccluded)(buffer, pass, quads.data(), quads.size(),
+                                                      work);
+}
+
+void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,
+                RasterWork& work) {
+  HWY_DYNAMIC_DISPATCH(WriteQuads)(buffer, pass, quads.data(), quads.size(), work);
 }
 
 const char* rasteriserTarget() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }

@@ -33,6 +33,13 @@ void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
 void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
                     std::span<const ScreenTriangle> triangles, RasterWork& work);
 
+// The same for quads (ScreenQuad; conservative passes only), each set up and visited as one piece.
+[[nodiscard]] std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
+                                                 std::span<const ScreenQuad> quads,
+                                                 RasterWork& work);
+void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,
+                RasterWork& work);
+
 // The instruction set the loops run with ("AVX2", "AVX3", "SSE4", ...).
 [[nodiscard]] const char* rasteriserTarget();
 

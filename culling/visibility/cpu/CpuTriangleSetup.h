@@ -18,9 +18,20 @@ namespace cdb {
 // A triangle of the pass: x, y in pixels of the depth buffer (pixel (i, j) is the square
 // [i, i + 1] x [j, j + 1]), k its depth key.
 struct ScreenTriangle {
+  static constexpr int kVertices = 3;
   double x[3];
   double y[3];
   double k[3];
+};
+
+// A face of a box in the same space, corners in order around it: a parallelogram up to the
+// rounding of its corners' transforms (the pass' matrix is affine). Drawn as one piece instead of
+// two triangles, it is set up once and its pixels are visited once (conservative mode only).
+struct ScreenQuad {
+  static constexpr int kVertices = 4;
+  double x[4];
+  double y[4];
+  double k[4];
 };
 
 // Depth keys are stored depths times `sign` (+1, or -1 in a reversed pass): a smaller key is
@@ -87,10 +98,25 @@ inline constexpr double kFloatEvalError = 1.0 / (1 << 20);  // 2^-20
 // the depth epsilon; five roundings of 2^-24.
 inline constexpr double kFloatDepthError = 1.0 / (1 << 21);  // 2^-21
 
-inline bool allFinite(const ScreenTriangle& t) {
-  for (int i = 0; i < 3; ++i)
+template <class Piece>
+inline bool allFinite(const Piece& t) {
+  for (int i = 0; i < Piece::kVertices; ++i)
     if (!std::isfinite(t.x[i]) || !std::isfinite(t.y[i]) || !std::isfinite(t.k[i])) return false;
   return true;
+}
+
+// Smallest and largest of a piece's vertex values.
+template <int N>
+inline double smallest(const double (&v)[N]) {
+  double m = v[0];
+  for (int i = 1; i < N; ++i) m = std::min(m, v[i]);
+  return m;
+}
+template <int N>
+inline double largest(const double (&v)[N]) {
+  double m = v[0];
+  for (int i = 1; i < N; ++i) m = std::max(m, v[i]);
+  return m;
 }
 
 }  // namespace raster_detail
@@ -102,15 +128,16 @@ inline bool allFinite(const ScreenTriangle& t) {
 
 // Step 1: the pixel box and the key bounds r.zLo, r.zHi. False when the triangle covers no pixel
 // of the buffer (off-screen, or a non-finite vertex, or in raw mode a zero-area triangle, which GL
-// does not rasterise either).
-CDB_RASTER_INLINE bool setupBounds(const ScreenTriangle& t, const RasterPass& pass, RasterRole role,
+// does not rasterise either). The same for a quad (conservative mode).
+template <class Piece>
+CDB_RASTER_INLINE bool setupBounds(const Piece& t, const RasterPass& pass, RasterRole role,
                                    TriangleRaster& r) {
   using namespace raster_detail;
   if (!allFinite(t)) return false;
   const bool conservative = pass.conservative;
   const double m = conservative ? pass.marginPx : 0.0;
-  const double minX = std::min({t.x[0], t.x[1], t.x[2]}), maxX = std::max({t.x[0], t.x[1], t.x[2]});
-  const double minY = std::min({t.y[0], t.y[1], t.y[2]}), maxY = std::max({t.y[0], t.y[1], t.y[2]});
+  const double minX = smallest(t.x), maxX = largest(t.x);
+  const double minY = smallest(t.y), maxY = largest(t.y);
   // Conservative: pixel i's grown square [i - m, i + 1 + m] meets [minX, maxX] exactly for
   // i in [ceil(minX - m) - 1, floor(maxX + m)] (a triangle touching a pixel border at a vertex
   // covers both pixels). Raw: the centre i + 1/2 lies in [minX, maxX].
@@ -132,7 +159,7 @@ CDB_RASTER_INLINE bool setupBounds(const ScreenTriangle& t, const RasterPass& pa
 
   // The key over the triangle lies within its vertex keys [kMin, kMax] (it is their convex
   // hull); then the depth epsilon toward "occluded" (conservative) or the raw offset (tests).
-  const double kMin = std::min({t.k[0], t.k[1], t.k[2]}), kMax = std::max({t.k[0], t.k[1], t.k[2]});
+  const double kMin = smallest(t.k), kMax = largest(t.k);
   const bool test = role == RasterRole::Test;
   const double shift = conservative ? (test ? pass.depthEpsilon : -pass.depthEpsilon)
                                     : (test ? pass.rawTestOffset : 0.0);
@@ -157,9 +184,53 @@ inline constexpr int kSmallBox = 3;
   return pass.conservative && r.x1 - r.x0 < kSmallBox && r.y1 - r.y0 < kSmallBox;
 }
 
-// Step 2: edge functions and the depth plane, for a triangle step 1 accepted.
-CDB_RASTER_INLINE void setupCoverage(const ScreenTriangle& t, const RasterPass& pass,
-                                     RasterRole role, TriangleRaster& r) {
+namespace raster_detail {
+
+// Coverage of a quad (conservative mode): separating axes of a parallelogram and a square are the
+// square's two axes (the bounding box of step 1) and the normals of two adjacent edges. Along the
+// normal of edge s (corner s to s + 1) the quad spans the range of its four corners, which holds
+// the convex hull of the corners as rounded (the two triangles GL would draw) even where rounding
+// has made them a little off a parallelogram; the pixel square's range is as for a triangle's
+// edge. The third edge slot stays unconstrained.
+CDB_RASTER_INLINE void quadCoverage(const ScreenQuad& q, double m, double spanX, double spanY,
+                                    TriangleRaster& r) {
+  const double ox = r.x0, oy = r.y0;
+  for (int s = 0; s < 2; ++s) {
+    const double a = q.y[s + 1] - q.y[s], b = -(q.x[s + 1] - q.x[s]);
+    double spanLo = 0.0, spanHi = 0.0;
+    for (int v = 0; v < 4; ++v) {
+      const double f = a * (q.x[v] - q.x[s]) + b * (q.y[v] - q.y[s]);
+      spanLo = std::min(spanLo, f), spanHi = std::max(spanHi, f);
+    }
+    const double c = a * (ox - q.x[s]) + b * (oy - q.y[s]);
+    const double grow = m * (std::abs(a) + std::abs(b));
+    const double maxOff = std::max(a, 0.0) + std::max(b, 0.0) + grow;
+    const double minOff = std::min(a, 0.0) + std::min(b, 0.0) - grow;
+    const double lo = spanLo - maxOff, hi = spanHi - minOff;
+    const double tol = kFloatEvalError * (std::abs(a) * spanX + std::abs(b) * spanY +
+                                          std::abs(c) + std::abs(lo) + std::abs(hi));
+    r.a[s] = static_cast<float>(a), r.b[s] = static_cast<float>(b), r.c[s] = static_cast<float>(c);
+    r.lo[s] = roundDown(lo - tol), r.hi[s] = roundUp(hi + tol);
+    if (!std::isfinite(r.a[s]) || !std::isfinite(r.b[s]) || !std::isfinite(r.c[s]) ||
+        !std::isfinite(tol)) {
+      r.a[s] = r.b[s] = r.c[s] = 0.f;
+      r.lo[s] = -std::numeric_limits<float>::infinity();
+      r.hi[s] = std::numeric_limits<float>::infinity();
+    }
+  }
+  r.a[2] = r.b[2] = r.c[2] = 0.f;
+  r.lo[2] = -std::numeric_limits<float>::infinity();
+  r.hi[2] = std::numeric_limits<float>::infinity();
+}
+
+}  // namespace raster_detail
+
+// Step 2: edge functions and the depth plane, for a triangle (or, in conservative mode, a quad)
+// step 1 accepted.
+template <class Piece>
+CDB_RASTER_INLINE void setupCoverage(const Piece& t, const RasterPass& pass, RasterRole role,
+                                     TriangleRaster& r) {
+  constexpr bool quad = Piece::kVertices == 4;
   using namespace raster_detail;
   const bool conservative = pass.conservative;
   const double m = conservative ? pass.marginPx : 0.0;
@@ -173,7 +244,9 @@ CDB_RASTER_INLINE void setupCoverage(const ScreenTriangle& t, const RasterPass& 
   const double det = e1x * e2y - e1y * e2x;
 
   // Coverage.
-  if (conservative) {
+  if constexpr (quad) {
+    quadCoverage(t, m, spanX, spanY, r);
+  } else if (conservative) {
     // Separating axes of a triangle and a square: the square's two axes (the bounding box
     // above) and the three edge normals. Along edge e's normal n = (a, b) the triangle spans
     // [min(0, side), max(0, side)] relative to the edge's line (side: where the opposite vertex
@@ -204,7 +277,7 @@ CDB_RASTER_INLINE void setupCoverage(const ScreenTriangle& t, const RasterPass& 
         r.hi[e] = std::numeric_limits<float>::infinity();
       }
     }
-  } else {
+  } else if constexpr (!quad) {
     // Pixel centres strictly inside, or on an edge that owns its boundary (a top-left style rule:
     // of two triangles sharing an edge, exactly one owns it, as GL's rasterisers).
     const double orient = det > 0 ? 1.0 : -1.0;
@@ -248,6 +321,11 @@ CDB_RASTER_INLINE void setupCoverage(const ScreenTriangle& t, const RasterPass& 
   // The float evaluation's error (and the gradient's, 2^-32 relative at this conditioning),
   // then the epsilon or offset toward "occluded".
   double shift = kFloatDepthError * (std::abs(zc) + std::abs(gx) * spanX + std::abs(gy) * spanY);
+  if constexpr (quad) {
+    // The plane is that of corners 0, 1, 2. The second triangle (0, 2, 3) has its own as rounded:
+    // the two differ over it by at most their difference at corner 3, which widens the bound.
+    shift += std::abs(t.k[3] - (t.k[0] + gx * (t.x[3] - t.x[0]) + gy * (t.y[3] - t.y[0])));
+  }
   if (conservative)
     shift += pass.depthEpsilon;  // transform rounding and float32 storage, as GL's bound
   else if (test)
@@ -262,8 +340,9 @@ CDB_RASTER_INLINE void setupCoverage(const ScreenTriangle& t, const RasterPass& 
 }
 
 // Both steps.
-CDB_RASTER_INLINE bool setupTriangle(const ScreenTriangle& t, const RasterPass& pass,
-                                     RasterRole role, TriangleRaster& r) {
+template <class Piece>
+CDB_RASTER_INLINE bool setupTriangle(const Piece& t, const RasterPass& pass, RasterRole role,
+                                     TriangleRaster& r) {
   if (!setupBounds(t, pass, role, r)) return false;
   setupCoverage(t, pass, role, r);
   return true;
