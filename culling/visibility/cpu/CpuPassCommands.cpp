@@ -127,41 +127,43 @@ std::size_t fillChunk(const CpuCommandList& list, const CpuCommand& c, std::uint
   return kept;
 }
 
-// A piece decided by the tiles under it before any of its triangles is set up: its screen bounds
-// (the corners of a box holding it, through its matrix) give a pixel box holding every pixel
-// box its triangles get from setupBounds, and key bounds beyond all of theirs. A test whose
-// farthest key is nearer than everything stored there is fully visible; a write whose nearest is
-// at or behind everything stored changes nothing. Both are what drawing its triangles one by one
-// would find (each triangle is decided by the same tiles), only sooner.
-bool decidedByBounds(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenMatrix& toScreen,
-                     const Eigen::AlignedBox3d& box, CpuCommand::Role role) {
-  if (box.isEmpty()) return false;
-  double minX = raster_detail::kInf, minY = minX, minK = minX;
-  double maxX = -raster_detail::kInf, maxY = maxX, maxK = maxX;
-  for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
-    const Eigen::Vector3d p = toScreen.leftCols<3>() * corner + toScreen.col(3);
-    minX = std::min(minX, p.x()), maxX = std::max(maxX, p.x());
-    minY = std::min(minY, p.y()), maxY = std::max(maxY, p.y());
-    minK = std::min(minK, p.z()), maxK = std::max(maxK, p.z());
+// Where a piece can reach on screen: x, y and key ranges holding all of its vertices.
+struct ScreenExtent {
+  double minX = raster_detail::kInf, minY = raster_detail::kInf, minK = raster_detail::kInf;
+  double maxX = -raster_detail::kInf, maxY = -raster_detail::kInf, maxK = -raster_detail::kInf;
+  void add(double x, double y, double k) {
+    minX = std::min(minX, x), maxX = std::max(maxX, x);
+    minY = std::min(minY, y), maxY = std::max(maxY, y);
+    minK = std::min(minK, k), maxK = std::max(maxK, k);
   }
-  if (!std::isfinite(minX + maxX + minY + maxY + minK + maxK)) return false;
+};
+
+// A piece decided by the tiles under it before any of its triangles is set up: its screen extent
+// gives a pixel box holding every pixel box its triangles get from setupBounds, and key bounds
+// beyond all of theirs. A test whose farthest key is nearer than everything stored there is fully
+// visible; a write whose nearest is at or behind everything stored changes nothing. Both are what
+// drawing its triangles one by one would find (each triangle is decided by the same tiles), only
+// sooner.
+bool decidedByExtent(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenExtent& e,
+                     CpuCommand::Role role) {
+  if (!std::isfinite(e.minX + e.maxX + e.minY + e.maxY + e.minK + e.maxK)) return false;
   // A pixel more on each side and keys widened far beyond the rounding of the transforms (the
-  // triangles' vertices go through the same matrix, each rounded a little differently).
+  // triangles' vertices may go through the same matrix, each rounded a little differently).
   const double m = pass.marginPx + 1.0;
-  const int x0 = static_cast<int>(std::max(0.0, std::floor(minX - m) - 1.0));
-  const int y0 = static_cast<int>(std::max(0.0, std::floor(minY - m) - 1.0));
+  const int x0 = static_cast<int>(std::max(0.0, std::floor(e.minX - m) - 1.0));
+  const int y0 = static_cast<int>(std::max(0.0, std::floor(e.minY - m) - 1.0));
   const double last = pass.resolution - 1;
-  const double fx1 = std::min(last, std::ceil(maxX + m)), fy1 = std::min(last, std::ceil(maxY + m));
+  const double fx1 = std::min(last, std::ceil(e.maxX + m));
+  const double fy1 = std::min(last, std::ceil(e.maxY + m));
   if (fx1 < x0 || fy1 < y0) return true;  // off-screen: no triangle of it has a pixel
   const int x1 = static_cast<int>(fx1), y1 = static_cast<int>(fy1);
-  const double slack = 1e-9 * (1.0 + std::abs(minK) + std::abs(maxK));
+  const double slack = 1e-9 * (1.0 + std::abs(e.minK) + std::abs(e.maxK));
   const bool test = role == CpuCommand::Role::Test;
   const double shift = pass.conservative ? (test ? pass.depthEpsilon : -pass.depthEpsilon)
                                          : (test ? pass.rawTestOffset : 0.0);
   const auto clampToPass = [&](float v) { return std::clamp(v, pass.keyLo, pass.keyHi); };
-  const float zHi = clampToPass(raster_detail::roundUp(maxK + shift + slack));
-  const float zLo = clampToPass(raster_detail::roundDown(minK + shift - slack));
+  const float zHi = clampToPass(raster_detail::roundUp(e.maxK + shift + slack));
+  const float zLo = clampToPass(raster_detail::roundDown(e.minK + shift - slack));
   constexpr int kTile = CpuDepthBuffer::kTile;
   for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
     for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) {
@@ -171,6 +173,31 @@ bool decidedByBounds(CpuDepthBuffer& buffer, const RasterPass& pass, const Scree
       if (test ? zHi >= nearest : zLo < farthest) return false;
     }
   return true;
+}
+
+// The same for a piece given by a box in its own frame (a mesh's, or the unit cube of a box
+// command), through its matrix: the extent of the box's corners.
+bool decidedByBounds(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenMatrix& toScreen,
+                     const Eigen::AlignedBox3d& box, CpuCommand::Role role) {
+  if (box.isEmpty()) return false;
+  ScreenExtent e;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
+    const Eigen::Vector3d p = toScreen.leftCols<3>() * corner + toScreen.col(3);
+    e.add(p.x(), p.y(), p.z());
+  }
+  return decidedByExtent(buffer, pass, e, role);
+}
+
+// The same for a chunk of screen triangles: the extent of their vertices. Worth it for tests (on
+// env2's dragons at 500 px, 23% of the chunks of a triangle-level test were decided) but not for
+// writes (55 of 292,709 chunks: a write mostly reaches pixels nothing has been written to).
+bool decidedChunk(CpuDepthBuffer& buffer, const RasterPass& pass,
+                  std::span<const ScreenTriangle> triangles, CpuCommand::Role role) {
+  ScreenExtent e;
+  for (const ScreenTriangle& t : triangles)
+    for (int v = 0; v < 3; ++v) e.add(t.x[v], t.y[v], t.k[v]);
+  return decidedByExtent(buffer, pass, e, role);
 }
 
 const Eigen::AlignedBox3d kUnitCube(Eigen::Vector3d::Constant(-1.0),
@@ -229,6 +256,7 @@ void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandL
     const std::uint32_t at = done;
     const std::size_t n = fillChunk(list, c, done, chunk);
     const std::span<const ScreenTriangle> tris(chunk.data(), n);
+    if (list.decideByBounds && decidedChunk(buffer, raster, tris, c.role)) continue;
     if (c.answerEach) {
       // Every triangle is kept (winding is 0 for batches): entry i answers triangle at + i.
       testEachTriangle(buffer, raster, tris, answers + c.query + at, work);
