@@ -44,6 +44,24 @@ inline bool tileMayBeCovered(const TriangleRaster& r, int tx, int ty) {
   return true;
 }
 
+// Whether every pixel of the triangle's box inside tile (tx, ty) is covered: for each edge, the
+// range of its function over those pixels lies within [lo, hi] (evaluated in float as
+// tileMayBeCovered; where that and a pixel's own evaluation round differently at the border,
+// the pixel is taken, which only adds pixels a tolerance's width from the triangle).
+inline bool tileFullyCovered(const TriangleRaster& r, int tx, int ty) {
+  const float dxA = static_cast<float>(std::max(r.x0, tx * kTile) - r.x0);
+  const float dxB = static_cast<float>(std::min(r.x1, tx * kTile + kTile - 1) - r.x0);
+  const float dyA = static_cast<float>(std::max(r.y0, ty * kTile) - r.y0);
+  const float dyB = static_cast<float>(std::min(r.y1, ty * kTile + kTile - 1) - r.y0);
+  for (int e = 0; e < 3; ++e) {
+    const float ax = r.a[e] * dxA, bx = r.a[e] * dxB, ay = r.b[e] * dyA, by = r.b[e] * dyB;
+    const float fMin = r.c[e] + std::min(ax, bx) + std::min(ay, by);
+    const float fMax = r.c[e] + std::max(ax, bx) + std::max(ay, by);
+    if (!(fMin >= r.lo[e] && fMax <= r.hi[e])) return false;
+  }
+  return true;
+}
+
 // The triangle's constants as vectors, in registers for the whole triangle (read through the
 // TriangleRaster the compiler would reload them after every store to the depth buffer).
 struct Lanes {
@@ -105,6 +123,11 @@ HWY_INLINE hn::Mask<D> covered(const Lanes& l, const RowSetup& row, hn::Vec<D> d
     m = hn::And(m, hn::And(hn::Ge(f, l.lo[e]), hn::Le(f, l.hi[e])));
   }
   return m;
+}
+
+// The lanes of one step inside the box's columns (a tile the triangle covers whole).
+HWY_INLINE hn::Mask<D> inBox(hn::Vec<D> dx, hn::Vec<D> boxLo, hn::Vec<D> boxHi) {
+  return hn::And(hn::Ge(dx, boxLo), hn::Le(dx, boxHi));
 }
 
 HWY_INLINE hn::Vec<D> keyAt(const Lanes& l, const RowSetup& row, hn::Vec<D> dx) {
@@ -171,10 +194,38 @@ HWY_INLINE void refreshBounds(CpuDepthBuffer& buffer, std::size_t index) {
   buffer.tileMax(index) = hn::GetLane(hn::MaxOfLanes(d, hi));
 }
 
+// The pixels of the triangle's box in one tile; kWhole: the triangle covers all of them, so
+// the edge functions are not evaluated. True when a stored value changed.
+template <bool kWhole>
+HWY_INLINE bool writeTile(float* values, const Lanes& l, const TriangleRaster& r,
+                          const TileSpan& span, int tx, hn::Vec<D> sign, RasterWork& work) {
+  const D d;
+  const int n = static_cast<int>(hn::Lanes(d));
+  bool changed = false;
+  RowSetup row;
+  for (int y = span.ry0; y <= span.ry1; ++y) {
+    startRow(l, y, r, row);
+    work.pixelsWritten += static_cast<std::uint64_t>(span.columns());
+    for (int lx = 0; lx < kTile; lx += n) {
+      if (!span.holdsStep(tx, lx, n)) continue;
+      const auto dx = hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0));
+      const auto m = kWhole ? inBox(dx, span.boxLo, span.boxHi)
+                            : covered(l, row, dx, span.boxLo, span.boxHi);
+      float* at = values + (y % kTile) * kTile + lx;
+      const auto storedKey = hn::Mul(hn::LoadU(d, at), sign);
+      const auto key = keyAt(l, row, dx);
+      const auto nearer = hn::And(m, hn::Lt(key, storedKey));
+      if (hn::AllFalse(d, nearer)) continue;
+      hn::StoreU(hn::Mul(hn::IfThenElse(nearer, key, storedKey), sign), d, at);
+      changed = true;
+    }
+  }
+  return changed;
+}
+
 void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
               RasterWork& work) {
   const D d;
-  const int n = static_cast<int>(hn::Lanes(d));
   const int tx0 = r.x0 / kTile, tx1 = r.x1 / kTile, ty0 = r.y0 / kTile, ty1 = r.y1 / kTile;
   const bool oneTile = tx0 == tx1 && ty0 == ty1;
   const auto sign = hn::Set(d, pass.sign);
@@ -187,25 +238,10 @@ void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRast
       if (!oneTile && !tileMayBeCovered(r, tx, ty)) continue;
       buffer.materialise(index);
       float* values = buffer.tile(index);
-      bool changed = false;
       const TileSpan span = spanInTile(r, tx, ty);
-      RowSetup row;
-      for (int y = span.ry0; y <= span.ry1; ++y) {
-        startRow(l, y, r, row);
-        work.pixelsWritten += static_cast<std::uint64_t>(span.columns());
-        for (int lx = 0; lx < kTile; lx += n) {
-          if (!span.holdsStep(tx, lx, n)) continue;
-          const auto dx = hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0));
-          const auto m = covered(l, row, dx, span.boxLo, span.boxHi);
-          float* at = values + (y % kTile) * kTile + lx;
-          const auto storedKey = hn::Mul(hn::LoadU(d, at), sign);
-          const auto key = keyAt(l, row, dx);
-          const auto nearer = hn::And(m, hn::Lt(key, storedKey));
-          if (hn::AllFalse(d, nearer)) continue;
-          hn::StoreU(hn::Mul(hn::IfThenElse(nearer, key, storedKey), sign), d, at);
-          changed = true;
-        }
-      }
+      const bool changed = tileFullyCovered(r, tx, ty)
+                               ? writeTile<true>(values, l, r, span, tx, sign, work)
+                               : writeTile<false>(values, l, r, span, tx, sign, work);
       // Exact bounds again (a write only lowers keys, but the farthest may drop too, which lets
       // later tests accept the tile whole).
       if (changed) refreshBounds(buffer, index);
