@@ -318,43 +318,38 @@ const ShapeCase kShapes[] = {{Shape::Ordinary, "ordinary", 60},  {Shape::SubPixe
                              {Shape::Point, "point", 30},        {Shape::OnBorders, "on borders", 40},
                              {Shape::Large, "large", 6}};
 
-class CpuRasteriserProperty : public testing::TestWithParam<int> {};
-
-TEST_P(CpuRasteriserProperty, CoversEveryTouchedPixelWithSafeDepths) {
-  const int resolution = GetParam();
-  for (float sign : {1.f, -1.f}) {
-    for (const ShapeCase& s : kShapes) {
-      TriangleMaker maker(17u * resolution + static_cast<unsigned>(s.shape) + (sign < 0 ? 7u : 0u));
-      Tally tally;
-      for (int i = 0; i < s.count; ++i) {
-        checkTriangle(maker.make(s.shape, resolution), resolution, sign, tally);
-        if (HasFatalFailure()) {
-          ADD_FAILURE() << s.name << " triangle " << i << ", sign " << sign;
-          return;
+class CpuRasteriserProperty : public testing::TestWithParam<int> {
+ protected:
+  // Every shape at both signs, pieces from `Maker` (TriangleMaker or QuadMaker) seeded from
+  // `seedFactor`.
+  template <class Maker>
+  void checkEveryShape(unsigned seedFactor, const char* piece) {
+    const int resolution = GetParam();
+    for (float sign : {1.f, -1.f}) {
+      for (const ShapeCase& s : kShapes) {
+        Maker maker(seedFactor * resolution + static_cast<unsigned>(s.shape) +
+                    (sign < 0 ? 7u : 0u));
+        Tally tally;
+        for (int i = 0; i < s.count; ++i) {
+          checkTriangle(maker.make(s.shape, resolution), resolution, sign, tally);
+          if (HasFatalFailure()) {
+            ADD_FAILURE() << s.name << " " << piece << " " << i << ", sign " << sign;
+            return;
+          }
         }
+        EXPECT_GT(tally.coveredPixels, 0) << s.name;
       }
-      EXPECT_GT(tally.coveredPixels, 0) << s.name;
     }
   }
+};
+
+TEST_P(CpuRasteriserProperty, CoversEveryTouchedPixelWithSafeDepths) {
+  checkEveryShape<TriangleMaker>(17u, "triangle");
 }
 
 // The same guarantee for box faces drawn as quads (their reference: the face's two triangles).
 TEST_P(CpuRasteriserProperty, QuadsCoverEveryTouchedPixelWithSafeDepths) {
-  const int resolution = GetParam();
-  for (float sign : {1.f, -1.f}) {
-    for (const ShapeCase& s : kShapes) {
-      QuadMaker maker(29u * resolution + static_cast<unsigned>(s.shape) + (sign < 0 ? 7u : 0u));
-      Tally tally;
-      for (int i = 0; i < s.count; ++i) {
-        checkTriangle(maker.make(s.shape, resolution), resolution, sign, tally);
-        if (HasFatalFailure()) {
-          ADD_FAILURE() << s.name << " quad " << i << ", sign " << sign;
-          return;
-        }
-      }
-      EXPECT_GT(tally.coveredPixels, 0) << s.name;
-    }
-  }
+  checkEveryShape<QuadMaker>(29u, "quad");
 }
 
 // Named by resolution (not by index), so that a gtest filter and ctest (which shows the value) agree.

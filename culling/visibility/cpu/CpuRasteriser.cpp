@@ -27,39 +27,27 @@ inline TileKeys tileKeys(CpuDepthBuffer& buffer, std::size_t index, float sign) 
   return sign > 0 ? TileKeys{lo, hi} : TileKeys{-hi, -lo};
 }
 
-// False only when no pixel of tile (tx, ty) inside the box can be covered: for each edge, the
-// range of its function over the tile's pixels misses [lo, hi]. Evaluated in float like the
-// pixels; the set-up's tolerance bounds that error too, so no covered pixel is skipped.
-inline bool tileMayBeCovered(const TriangleRaster& r, int tx, int ty) {
+// How the triangle covers the pixels of its box inside tile (tx, ty), from the range of each
+// edge function over them, evaluated in float like the pixels: None when some edge's range misses
+// [lo, hi] (the set-up's tolerance bounds that error too, so no covered pixel is skipped); Whole
+// when every edge's range lies within it (where that and a pixel's own evaluation round
+// differently at the border, the pixel is taken, which only adds pixels a tolerance's width from
+// the triangle); Partial otherwise.
+enum class TileCover { None, Partial, Whole };
+inline TileCover tileCover(const TriangleRaster& r, int tx, int ty) {
   const float dxA = static_cast<float>(std::max(r.x0, tx * kTile) - r.x0);
   const float dxB = static_cast<float>(std::min(r.x1, tx * kTile + kTile - 1) - r.x0);
   const float dyA = static_cast<float>(std::max(r.y0, ty * kTile) - r.y0);
   const float dyB = static_cast<float>(std::min(r.y1, ty * kTile + kTile - 1) - r.y0);
+  TileCover cover = TileCover::Whole;
   for (int e = 0; e < 3; ++e) {
     const float ax = r.a[e] * dxA, bx = r.a[e] * dxB, ay = r.b[e] * dyA, by = r.b[e] * dyB;
     const float fMin = r.c[e] + std::min(ax, bx) + std::min(ay, by);
     const float fMax = r.c[e] + std::max(ax, bx) + std::max(ay, by);
-    if (fMax < r.lo[e] || fMin > r.hi[e]) return false;
+    if (fMax < r.lo[e] || fMin > r.hi[e]) return TileCover::None;
+    if (!(fMin >= r.lo[e] && fMax <= r.hi[e])) cover = TileCover::Partial;
   }
-  return true;
-}
-
-// Whether every pixel of the triangle's box inside tile (tx, ty) is covered: for each edge, the
-// range of its function over those pixels lies within [lo, hi] (evaluated in float as
-// tileMayBeCovered; where that and a pixel's own evaluation round differently at the border,
-// the pixel is taken, which only adds pixels a tolerance's width from the triangle).
-inline bool tileFullyCovered(const TriangleRaster& r, int tx, int ty) {
-  const float dxA = static_cast<float>(std::max(r.x0, tx * kTile) - r.x0);
-  const float dxB = static_cast<float>(std::min(r.x1, tx * kTile + kTile - 1) - r.x0);
-  const float dyA = static_cast<float>(std::max(r.y0, ty * kTile) - r.y0);
-  const float dyB = static_cast<float>(std::min(r.y1, ty * kTile + kTile - 1) - r.y0);
-  for (int e = 0; e < 3; ++e) {
-    const float ax = r.a[e] * dxA, bx = r.a[e] * dxB, ay = r.b[e] * dyA, by = r.b[e] * dyB;
-    const float fMin = r.c[e] + std::min(ax, bx) + std::min(ay, by);
-    const float fMax = r.c[e] + std::max(ax, bx) + std::max(ay, by);
-    if (!(fMin >= r.lo[e] && fMax <= r.hi[e])) return false;
-  }
-  return true;
+  return cover;
 }
 
 // The triangle's constants as vectors, in registers for the whole triangle (read through the
@@ -149,7 +137,7 @@ bool testOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaste
       const TileKeys stored = tileKeys(buffer, index, pass.sign);
       // Every sample key is at most zHi: nearer than all the tile holds means visible here.
       if (r.zHi < stored.nearest) continue;
-      if (!oneTile && !tileMayBeCovered(r, tx, ty)) continue;
+      if (!oneTile && tileCover(r, tx, ty) == TileCover::None) continue;
       // Every sample key is at least zLo: at or behind all the tile holds, so the first covered
       // pixel is occluded without reading depths.
       const bool allBehind = r.zLo >= stored.farthest;
@@ -235,11 +223,12 @@ void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRast
       const std::size_t index = buffer.tileIndex(tx, ty);
       // Every written key is at least zLo: nothing in the tile is farther, nothing changes.
       if (r.zLo >= tileKeys(buffer, index, pass.sign).farthest) continue;
-      if (!oneTile && !tileMayBeCovered(r, tx, ty)) continue;
+      const TileCover cover = tileCover(r, tx, ty);
+      if (!oneTile && cover == TileCover::None) continue;
       buffer.materialise(index);
       float* values = buffer.tile(index);
       const TileSpan span = spanInTile(r, tx, ty);
-      const bool changed = tileFullyCovered(r, tx, ty)
+      const bool changed = cover == TileCover::Whole
                                ? writeTile<true>(values, l, r, span, tx, sign, work)
                                : writeTile<false>(values, l, r, span, tx, sign, work);
       // Exact bounds again (a write only lowers keys, but the farthest may drop too, which lets
