@@ -39,8 +39,10 @@ std::array<bool, 6> decidingFaces(const ScreenMatrix& cubeToScreen, CpuCommand::
   return keep;
 }
 
-std::array<Eigen::Vector3d, 8> cubeCorners(const ScreenMatrix& cubeToScreen) {
-  std::array<Eigen::Vector3d, 8> corner;
+// A box's corners on screen (corner i has x, y, z = bits 0, 1, 2 of the unit cube).
+using BoxCorners = std::array<Eigen::Vector3d, 8>;
+BoxCorners cubeCorners(const ScreenMatrix& cubeToScreen) {
+  BoxCorners corner;
   for (int i = 0; i < 8; ++i) {
     const Eigen::Vector3d c((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
     corner[i] = cubeToScreen.leftCols<3>() * c + cubeToScreen.col(3);
@@ -51,8 +53,8 @@ std::array<Eigen::Vector3d, 8> cubeCorners(const ScreenMatrix& cubeToScreen) {
 // The deciding faces of a box as quads (conservative passes): each face's two triangles in
 // kCubeFaces share their first and third corner, so a, b, c of the first and the second's last
 // go around the face.
-std::size_t boxQuads(const ScreenMatrix& cubeToScreen, CpuCommand::Role role, ScreenQuad* out) {
-  const std::array<Eigen::Vector3d, 8> corner = cubeCorners(cubeToScreen);
+std::size_t boxQuads(const ScreenMatrix& cubeToScreen, const BoxCorners& corner,
+                     CpuCommand::Role role, ScreenQuad* out) {
   const std::array<bool, 6> keep = decidingFaces(cubeToScreen, role);
   std::size_t n = 0;
   for (int f = 0; f < 6; ++f) {
@@ -74,9 +76,8 @@ std::size_t boxQuads(const ScreenMatrix& cubeToScreen, CpuCommand::Role role, Sc
 // square it covers is reached on a back face (what a test needs), the nearest on a front face (a
 // write): the other faces change nothing. Faces seen edge-on (key not changing along their
 // normal) belong to both sets.
-std::size_t boxTriangles(const ScreenMatrix& cubeToScreen, CpuCommand::Role role,
-                         ScreenTriangle* out) {
-  const std::array<Eigen::Vector3d, 8> corner = cubeCorners(cubeToScreen);
+std::size_t boxTriangles(const ScreenMatrix& cubeToScreen, const BoxCorners& corner,
+                         CpuCommand::Role role, ScreenTriangle* out) {
   const std::array<bool, 6> keep = decidingFaces(cubeToScreen, role);
   std::size_t n = 0;
   for (int f = 0; f < 6; ++f) {
@@ -175,8 +176,8 @@ bool decidedByExtent(CpuDepthBuffer& buffer, const RasterPass& pass, const Scree
   return true;
 }
 
-// The same for a piece given by a box in its own frame (a mesh's, or the unit cube of a box
-// command), through its matrix: the extent of the box's corners.
+// The same for a mesh given by its box in its own frame, through its matrix: the extent of the
+// box's corners.
 bool decidedByBounds(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenMatrix& toScreen,
                      const Eigen::AlignedBox3d& box, CpuCommand::Role role) {
   if (box.isEmpty()) return false;
@@ -186,6 +187,15 @@ bool decidedByBounds(CpuDepthBuffer& buffer, const RasterPass& pass, const Scree
     const Eigen::Vector3d p = toScreen.leftCols<3>() * corner + toScreen.col(3);
     e.add(p.x(), p.y(), p.z());
   }
+  return decidedByExtent(buffer, pass, e, role);
+}
+
+// The same for a box command's box, given its corners on screen (those its faces are drawn
+// from: one transform of each corner serves both).
+bool decidedByCorners(CpuDepthBuffer& buffer, const RasterPass& pass, const BoxCorners& corners,
+                      CpuCommand::Role role) {
+  ScreenExtent e;
+  for (const Eigen::Vector3d& p : corners) e.add(p.x(), p.y(), p.z());
   return decidedByExtent(buffer, pass, e, role);
 }
 
@@ -200,9 +210,6 @@ bool decidedChunk(CpuDepthBuffer& buffer, const RasterPass& pass,
   return decidedByExtent(buffer, pass, e, role);
 }
 
-const Eigen::AlignedBox3d kUnitCube(Eigen::Vector3d::Constant(-1.0),
-                                    Eigen::Vector3d::Constant(1.0));
-
 ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box) {
   ScreenMatrix m;
   m.leftCols<3>() = objectToScreen.leftCols<3>() * box.axes * box.halfExtents.asDiagonal();
@@ -213,26 +220,28 @@ ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox&
 // A box's deciding faces: as quads in conservative passes, as triangles in raw ones (whose
 // pixel-centre rule is a triangle's). True when a test finds an occluded sample.
 bool testBox(CpuDepthBuffer& buffer, const RasterPass& raster, const ScreenMatrix& cube,
-             CpuCommand::Role role, std::array<ScreenTriangle, kChunk>& chunk, RasterWork& work) {
+             const BoxCorners& corners, CpuCommand::Role role,
+             std::array<ScreenTriangle, kChunk>& chunk, RasterWork& work) {
   if (raster.conservative) {
     std::array<ScreenQuad, 6> quads;
-    const std::size_t n = boxQuads(cube, role, quads.data());
+    const std::size_t n = boxQuads(cube, corners, role, quads.data());
     return testQuadsUntilOccluded(buffer, raster, std::span<const ScreenQuad>(quads.data(), n),
                                   work) < n;
   }
-  const std::size_t n = boxTriangles(cube, role, chunk.data());
+  const std::size_t n = boxTriangles(cube, corners, role, chunk.data());
   return testTrianglesUntilOccluded(buffer, raster,
                                     std::span<const ScreenTriangle>(chunk.data(), n), work) < n;
 }
 void writeBox(CpuDepthBuffer& buffer, const RasterPass& raster, const ScreenMatrix& cube,
-              CpuCommand::Role role, std::array<ScreenTriangle, kChunk>& chunk, RasterWork& work) {
+              const BoxCorners& corners, CpuCommand::Role role,
+              std::array<ScreenTriangle, kChunk>& chunk, RasterWork& work) {
   if (raster.conservative) {
     std::array<ScreenQuad, 6> quads;
-    const std::size_t n = boxQuads(cube, role, quads.data());
+    const std::size_t n = boxQuads(cube, corners, role, quads.data());
     writeQuads(buffer, raster, std::span<const ScreenQuad>(quads.data(), n), work);
     return;
   }
-  const std::size_t n = boxTriangles(cube, role, chunk.data());
+  const std::size_t n = boxTriangles(cube, corners, role, chunk.data());
   writeTriangles(buffer, raster, std::span<const ScreenTriangle>(chunk.data(), n), work);
 }
 
@@ -242,8 +251,9 @@ void runTest(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommandL
   if (c.source == CpuCommand::Source::Boxes) {
     for (std::uint32_t b = 0; b < c.count; ++b) {
       const ScreenMatrix cube = cubeToScreen(c.toScreen, list.boxes[c.first + b]);
-      if (list.decideByBounds && decidedByBounds(buffer, raster, cube, kUnitCube, c.role)) continue;
-      if (testBox(buffer, raster, cube, c.role, chunk, work)) {
+      const BoxCorners corners = cubeCorners(cube);
+      if (list.decideByBounds && decidedByCorners(buffer, raster, corners, c.role)) continue;
+      if (testBox(buffer, raster, cube, corners, c.role, chunk, work)) {
         answers[c.query + (c.answerEach ? b : 0)] = 0;
         if (!c.answerEach) return;
       }
@@ -275,8 +285,9 @@ void runWrite(CpuDepthBuffer& buffer, const RasterPass& raster, const CpuCommand
   if (c.source == CpuCommand::Source::Boxes) {
     for (std::uint32_t b = 0; b < c.count; ++b) {
       const ScreenMatrix cube = cubeToScreen(c.toScreen, list.boxes[c.first + b]);
-      if (list.decideByBounds && decidedByBounds(buffer, raster, cube, kUnitCube, c.role)) continue;
-      writeBox(buffer, raster, cube, c.role, chunk, work);
+      const BoxCorners corners = cubeCorners(cube);
+      if (list.decideByBounds && decidedByCorners(buffer, raster, corners, c.role)) continue;
+      writeBox(buffer, raster, cube, corners, c.role, chunk, work);
     }
     return;
   }
