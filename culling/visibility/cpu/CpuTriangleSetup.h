@@ -186,12 +186,43 @@ inline constexpr int kSmallBox = 3;
 
 namespace raster_detail {
 
+// Edge slot e left without a constraint (every pixel of the box passes it).
+CDB_RASTER_INLINE void unconstrainedEdge(int e, TriangleRaster& r) {
+  r.a[e] = r.b[e] = r.c[e] = 0.f;
+  r.lo[e] = -std::numeric_limits<float>::infinity();
+  r.hi[e] = std::numeric_limits<float>::infinity();
+}
+
+// One separating axis of a conservative piece, into edge slot e: n = (a, b), along which the
+// piece spans [spanLo, spanHi] relative to a reference point on it, and c, the function
+// n . (p - reference) at the box's pixel origin. The pixel square at the evaluated corner spans
+// f(corner) + [minOff, maxOff] along n (grown by the margin m); the two overlap when f(corner)
+// lies in [spanLo - maxOff, spanHi - minOff].
+CDB_RASTER_INLINE void conservativeEdge(int e, double a, double b, double c, double spanLo,
+                                        double spanHi, double m, double spanX, double spanY,
+                                        TriangleRaster& r) {
+  const double grow = m * (std::abs(a) + std::abs(b));
+  const double maxOff = std::max(a, 0.0) + std::max(b, 0.0) + grow;
+  const double minOff = std::min(a, 0.0) + std::min(b, 0.0) - grow;
+  const double lo = spanLo - maxOff, hi = spanHi - minOff;
+  // The loops evaluate f in float: widen by a bound of that error (only adds pixels).
+  const double tol = kFloatEvalError * (std::abs(a) * spanX + std::abs(b) * spanY +
+                                        std::abs(c) + std::abs(lo) + std::abs(hi));
+  r.a[e] = static_cast<float>(a), r.b[e] = static_cast<float>(b), r.c[e] = static_cast<float>(c);
+  r.lo[e] = roundDown(lo - tol), r.hi[e] = roundUp(hi + tol);
+  if (!std::isfinite(r.a[e]) || !std::isfinite(r.b[e]) || !std::isfinite(r.c[e]) ||
+      !std::isfinite(tol)) {
+    // Coordinates beyond float's range (far off-screen vertices): drop this edge's
+    // constraint; more pixels is the safe side for tests and writes alike.
+    unconstrainedEdge(e, r);
+  }
+}
+
 // Coverage of a quad (conservative mode): separating axes of a parallelogram and a square are the
 // square's two axes (the bounding box of step 1) and the normals of two adjacent edges. Along the
 // normal of edge s (corner s to s + 1) the quad spans the range of its four corners, which holds
 // the convex hull of the corners as rounded (the two triangles GL would draw) even where rounding
-// has made them a little off a parallelogram; the pixel square's range is as for a triangle's
-// edge. The third edge slot stays unconstrained.
+// has made them a little off a parallelogram. The third edge slot stays unconstrained.
 CDB_RASTER_INLINE void quadCoverage(const ScreenQuad& q, double m, double spanX, double spanY,
                                     TriangleRaster& r) {
   const double ox = r.x0, oy = r.y0;
@@ -203,24 +234,9 @@ CDB_RASTER_INLINE void quadCoverage(const ScreenQuad& q, double m, double spanX,
       spanLo = std::min(spanLo, f), spanHi = std::max(spanHi, f);
     }
     const double c = a * (ox - q.x[s]) + b * (oy - q.y[s]);
-    const double grow = m * (std::abs(a) + std::abs(b));
-    const double maxOff = std::max(a, 0.0) + std::max(b, 0.0) + grow;
-    const double minOff = std::min(a, 0.0) + std::min(b, 0.0) - grow;
-    const double lo = spanLo - maxOff, hi = spanHi - minOff;
-    const double tol = kFloatEvalError * (std::abs(a) * spanX + std::abs(b) * spanY +
-                                          std::abs(c) + std::abs(lo) + std::abs(hi));
-    r.a[s] = static_cast<float>(a), r.b[s] = static_cast<float>(b), r.c[s] = static_cast<float>(c);
-    r.lo[s] = roundDown(lo - tol), r.hi[s] = roundUp(hi + tol);
-    if (!std::isfinite(r.a[s]) || !std::isfinite(r.b[s]) || !std::isfinite(r.c[s]) ||
-        !std::isfinite(tol)) {
-      r.a[s] = r.b[s] = r.c[s] = 0.f;
-      r.lo[s] = -std::numeric_limits<float>::infinity();
-      r.hi[s] = std::numeric_limits<float>::infinity();
-    }
+    conservativeEdge(s, a, b, c, spanLo, spanHi, m, spanX, spanY, r);
   }
-  r.a[2] = r.b[2] = r.c[2] = 0.f;
-  r.lo[2] = -std::numeric_limits<float>::infinity();
-  r.hi[2] = std::numeric_limits<float>::infinity();
+  unconstrainedEdge(2, r);
 }
 
 }  // namespace raster_detail
@@ -259,25 +275,9 @@ CDB_RASTER_INLINE void setupCoverage(const Piece& t, const RasterPass& pass, Ras
       const double a = t.y[j] - t.y[i], b = -(t.x[j] - t.x[i]);
       const double side = a * (t.x[k] - t.x[i]) + b * (t.y[k] - t.y[i]);
       const double c = a * (ox - t.x[i]) + b * (oy - t.y[i]);
-      const double grow = m * (std::abs(a) + std::abs(b));
-      const double maxOff = std::max(a, 0.0) + std::max(b, 0.0) + grow;
-      const double minOff = std::min(a, 0.0) + std::min(b, 0.0) - grow;
-      const double lo = std::min(0.0, side) - maxOff, hi = std::max(0.0, side) - minOff;
-      // The loops evaluate f in float: widen by a bound of that error (only adds pixels).
-      const double tol = kFloatEvalError * (std::abs(a) * spanX + std::abs(b) * spanY +
-                                            std::abs(c) + std::abs(lo) + std::abs(hi));
-      r.a[e] = static_cast<float>(a), r.b[e] = static_cast<float>(b), r.c[e] = static_cast<float>(c);
-      r.lo[e] = roundDown(lo - tol), r.hi[e] = roundUp(hi + tol);
-      if (!std::isfinite(r.a[e]) || !std::isfinite(r.b[e]) || !std::isfinite(r.c[e]) ||
-          !std::isfinite(tol)) {
-        // Coordinates beyond float's range (far off-screen vertices): drop this edge's
-        // constraint; more pixels is the safe side for tests and writes alike.
-        r.a[e] = r.b[e] = r.c[e] = 0.f;
-        r.lo[e] = -std::numeric_limits<float>::infinity();
-        r.hi[e] = std::numeric_limits<float>::infinity();
-      }
+      conservativeEdge(e, a, b, c, std::min(0.0, side), std::max(0.0, side), m, spanX, spanY, r);
     }
-  } else if constexpr (!quad) {
+  } else {
     // Pixel centres strictly inside, or on an edge that owns its boundary (a top-left style rule:
     // of two triangles sharing an edge, exactly one owns it, as GL's rasterisers).
     const double orient = det > 0 ? 1.0 : -1.0;
