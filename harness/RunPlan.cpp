@@ -39,21 +39,31 @@ std::vector<Cell> planCells(const ScenarioConfig& config) {
   std::vector<Cell> cells;
   for (int count : counts)
     for (int repeat = 0; repeat < config.sweep.repeats; ++repeat)
-      for (const auto& strategy : config.sweep.strategies)
+      for (const auto& strategy : config.sweep.strategies) {
+        const auto limit = config.sweep.strategyRepeats.find(strategy);
+        if (limit != config.sweep.strategyRepeats.end() && repeat >= limit->second) continue;
         for (int resolution : config.sweep.resolutions)
           cells.push_back({count, repeat, strategy, resolution});
+      }
   return cells;
 }
 
 std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard) {
-  // Dealt round-robin in plan order (balanced: every share gets every strategy and resolution);
-  // each dealt cell keeps the index of its simulation group.
+  // Dealt round-robin in plan order, the deal turned by one share at each simulation group: cell
+  // k of group g (k counted from the group's first cell) goes to share (k + g) mod n. Without the
+  // turn, a cell's place in its group would fix its share, and so would its strategy and
+  // resolution (with 2 shares and one resolution, one share would get every cullide cell and the
+  // other every cullide_bvh cell); with it, every (strategy, resolution) is spread over the
+  // shares as evenly as the groups allow.
+  // Each dealt cell keeps the index of its simulation group.
   std::vector<Cell> dealt;
   std::vector<std::size_t> groupOf;
-  std::size_t group = 0;
+  std::size_t group = 0, groupStart = 0;
   for (std::size_t k = 0; k < cells.size(); ++k) {
-    if (k > 0 && !cells[k].sameFrames(cells[k - 1])) ++group;
-    if (static_cast<int>(k % static_cast<std::size_t>(shard.count)) == shard.index - 1) {
+    if (k > 0 && !cells[k].sameFrames(cells[k - 1])) ++group, groupStart = k;
+    const std::size_t inGroup = k - groupStart;
+    if (static_cast<int>((inGroup + group) % static_cast<std::size_t>(shard.count)) ==
+        shard.index - 1) {
       dealt.push_back(cells[k]);
       groupOf.push_back(group);
     }

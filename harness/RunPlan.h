@@ -23,8 +23,8 @@ struct Cell {
   }
 };
 
-// A share of the cells: the i-th of n (1-based), cells dealt round-robin in plan order; see
-// shareOf for the order a share runs them in.
+// A share of the cells: the i-th of n (1-based), cells dealt round-robin in plan order, turned by
+// one share at each simulation group; see shareOf for the order a share runs them in.
 struct Shard {
   int index = 1;
   int count = 1;
@@ -35,9 +35,11 @@ struct Shard {
 [[nodiscard]] Shard parseShard(const std::string& text);
 
 // Every cell of the config's sweep, grouped by (object count, repeat) so that each group's frames
-// are simulated once, then strategies, then resolutions.
+// are simulated once, then strategies, then resolutions. A strategy in sweep.strategyRepeats has
+// cells in the first N repeats only.
 [[nodiscard]] std::vector<Cell> planCells(const ScenarioConfig& config);
-// The share's cells (the i-th of every n in plan order), run starting at the simulation group
+// The share's cells (cell k of simulation group g, counted from the group's first, when
+// (k + g) mod n = i - 1), run starting at the simulation group
 // ((i - 1) * groups / n) and wrapping around, so that shares started together simulate different
 // groups first and later read each other's recordings instead of simulating every group each.
 [[nodiscard]] std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard);
