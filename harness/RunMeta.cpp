@@ -47,6 +47,7 @@ nlohmann::json runMetaJson(const nlohmann::json& shardMeta, const RunOptions& op
                     {"frames", config.dynamics.frames},
                     {"frame_stride", options.frameStride},
                     {"repeats", config.sweep.repeats},
+                    {"strategy_repeats", config.sweep.strategyRepeats},
                     {"resolutions", config.sweep.resolutions},
                     {"object_counts", config.sweep.objectCounts},
                     {"strategies", config.sweep.strategies},

@@ -16,6 +16,7 @@ struct RunOptions {
   std::optional<int> frames;
   int frameStride = 1;  // measure frames 0, k, 2k, ... of each simulation (all are simulated)
   std::optional<int> repeats;
+  std::vector<std::string> strategyRepeats;  // --strategy-repeats: "name=N", N <= repeats
   std::optional<std::uint64_t> seed;
   std::optional<bool> conservative;  // --raw sets false
   std::optional<std::string> visibility;  // --visibility: backend name (cdbench backends)

@@ -1,5 +1,7 @@
 #include "harness/ScenarioRunner.h"
 
+#include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <fstream>
 #include <memory>
@@ -86,6 +88,24 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
   if (options.frameStride < 1 || options.frameStride > config.dynamics.frames)
     throw InputError("--frame-stride " + std::to_string(options.frameStride) + ": expected 1.." +
                      std::to_string(config.dynamics.frames) + " (the frames simulated)");
+  for (const std::string& item : options.strategyRepeats) {
+    const auto eq = item.find('=');
+    const std::string name = item.substr(0, eq);
+    int n = 0;
+    const char* digits = eq == std::string::npos ? nullptr : item.c_str() + eq + 1;
+    const auto parsed = digits ? std::from_chars(digits, item.c_str() + item.size(), n)
+                               : std::from_chars_result{nullptr, std::errc::invalid_argument};
+    if (!digits || parsed.ec != std::errc() || parsed.ptr != item.c_str() + item.size())
+      throw InputError("--strategy-repeats '" + item + "': expected NAME=N, e.g. quick_cullide=3");
+    if (std::find(config.sweep.strategies.begin(), config.sweep.strategies.end(), name) ==
+        config.sweep.strategies.end())
+      throw InputError("--strategy-repeats '" + item + "': " + name +
+                       " is not one of the run's strategies");
+    if (n < 1 || n > config.sweep.repeats)
+      throw InputError("--strategy-repeats '" + item + "': expected 1.." +
+                       std::to_string(config.sweep.repeats) + " (the run's repeats)");
+    config.sweep.strategyRepeats[name] = n;
+  }
   if (options.replayFile && (config.sweep.repeats != 1 || config.sweep.objectCounts.size() > 1))
     throw InputError("--replay: expected a single repeat and object count (the recording's)");
   return config;

@@ -98,6 +98,9 @@ int main(int argc, char** argv) {
   runCmd->add_option("--objects", objects, "object counts of the swept group: list or range");
   auto* framesOpt = runCmd->add_option("--frames", frames, "frames per simulation");
   auto* repeatsOpt = runCmd->add_option("--repeats", repeats, "independent simulations");
+  std::string strategyRepeats;
+  runCmd->add_option("--strategy-repeats", strategyRepeats,
+                     "NAME=N[,NAME=N]: measure strategy NAME on the first N simulations only");
   runCmd->add_option("--frame-stride", run.frameStride,
                      "measure every k-th simulated frame (all frames are simulated)");
   auto* seedOpt = runCmd->add_option("--seed", seed, "base seed (repeat r uses seed + r)");
@@ -198,6 +201,7 @@ int main(int argc, char** argv) {
     if (!objects.empty()) run.objectCounts = cdb::parseIntList(objects);
     if (*framesOpt) run.frames = frames;
     if (*repeatsOpt) run.repeats = repeats;
+    run.strategyRepeats = splitNames(strategyRepeats);
     if (*seedOpt) run.seed = seed;
     if (raw) run.conservative = false;
     if (!visibility.empty()) run.visibility = visibility;

@@ -3,6 +3,7 @@
 // rejects unknown keys, wrong types and out-of-range values; everything else reads only this.
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -90,6 +91,9 @@ struct SweepSpec {
   std::vector<int> objectCounts;  // values for countedGroup's count
   int repeats = 1;               // independent simulations (seed, seed+1, ...)
   std::vector<std::string> strategies{"cullide"};
+  // Strategies measured on only the first N of the repeats (N < repeats): a costly strategy
+  // outside the thesis' tables need not take as long as the tables' own (`--strategy-repeats`).
+  std::map<std::string, int> strategyRepeats;
 };
 
 struct ScenarioConfig {

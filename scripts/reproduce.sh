@@ -12,11 +12,13 @@
 # README "Visibility backends"):
 #   quick (default): one simulation per cell group, every 10th frame (30 frames spread over each
 #     simulation). Within 15 minutes on 2 cores, build included.
-#   standard: the thesis' 10 simulations per cell group, every 5th frame (60 frames each); then the
-#     other backends on a subset (gl-flags: env1 at 500 and 800 px, env3 at 50, 125, 200 objects,
-#     3 simulations; gl-queries, whose occlusion queries cost ~15 us each on llvmpipe: env1 at 500 px
-#     and env3 at 50 and 100 objects, 2 simulations, every 30th frame), on the same recorded frames
-#     (same seeds), for the report's "what depends on the cost model".
+#   standard: the thesis' 10 simulations per cell group, every 5th frame (60 frames each), for the
+#     thesis' three strategies; quick_cullide, which is not in the thesis' tables and costs as much
+#     as cullide, on the first 3 of them. Then the other backends on a subset, 2 simulations each
+#     (gl-flags: env1 at 500 px and env3 at 50 and 125 objects, every 15th frame; gl-queries, whose
+#     occlusion queries cost ~15 us each on llvmpipe: env1 at 500 px and env3 at 50 and 100
+#     objects, every 30th frame), on the same simulations (same seeds), for the report's "what
+#     depends on the cost model". Within 90 minutes on 2 cores, build included.
 #   full: the thesis' protocol, 10 simulations, every frame (split it into shards on a cluster:
 #     README "Beyond one machine").
 # Each environment's cells are split into --jobs shares (default: the number of cores) run at
@@ -60,7 +62,7 @@ done
 
 case "$profile" in
   quick) common=(--repeats 1 --frame-stride 10) ;;
-  standard) common=(--repeats 10 --frame-stride 5) ;;
+  standard) common=(--repeats 10 --frame-stride 5 --strategy-repeats quick_cullide=3) ;;
   full) common=() ;;
 esac
 
@@ -107,8 +109,8 @@ if [[ $profile == standard ]]; then
       continue
     fi
     if [[ $backend == gl-flags ]]; then
-      run gl-flags env1 --repeats 3 --frame-stride 5 --resolutions 500,800
-      run gl-flags env3 --repeats 3 --frame-stride 5 --objects 50,125,200
+      run gl-flags env1 --repeats 2 --frame-stride 15 --resolutions 500
+      run gl-flags env3 --repeats 2 --frame-stride 15 --objects 50,125
     else
       run gl-queries env1 --repeats 2 --frame-stride 30 --resolutions 500
       run gl-queries env3 --repeats 2 --frame-stride 30 --objects 50,100

@@ -130,6 +130,16 @@ TEST(Cli, UnknownStrategyExitsTwoNamingIt) {
   EXPECT_NE(r.output.find("cullide"), std::string::npos) << r.output;
 }
 
+TEST(Cli, BadStrategyRepeatsExitTwoNamingTheItem) {
+  for (const std::string item : {"quick_cullide", "quick_cullide=x", "quick_cullide=0",
+                                 "quick_cullide=4", "nosuch=1"}) {
+    const auto r = runCdbench("run " + kConfigs + "env1.yaml --repeats 3 --strategy-repeats " + item +
+                              " --out " + tempDir("strategy-repeats").string());
+    EXPECT_EQ(r.exitCode, 2) << item << ": " << r.output;
+    EXPECT_NE(r.output.find("--strategy-repeats '" + item + "'"), std::string::npos) << r.output;
+  }
+}
+
 TEST(Cli, InfoPrintsTheRenderer) {
   const auto r = runCdbench("info --gl surfaceless");
   ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -45,11 +46,15 @@ TEST_P(ShareSplit, EveryCellOnceAndRoundRobinBalanced) {
   std::multiset<std::string> seen;
   for (int i = 1; i <= c.shares; ++i) {
     const auto share = cdb::shareOf(plan, {i, c.shares});
-    // Round-robin: the share holds exactly the plan's cells i, i + n, i + 2n, ...
+    // Round-robin turned at each group: the share holds exactly the cells k of group g (k counted
+    // from the group's first cell) with (k + g) mod n = i - 1.
     std::set<std::string> expected;
-    for (std::size_t k = static_cast<std::size_t>(i - 1); k < plan.size();
-         k += static_cast<std::size_t>(c.shares))
-      expected.insert(plan[k].key());
+    for (std::size_t k = 0, start = 0; k < plan.size(); ++k) {
+      if (k > 0 && !plan[k].sameFrames(plan[k - 1])) start = k;
+      if ((k - start + groupIndex(plan, plan[k])) % static_cast<std::size_t>(c.shares) ==
+          static_cast<std::size_t>(i - 1))
+        expected.insert(plan[k].key());
+    }
     std::set<std::string> got;
     for (const auto& cell : share) got.insert(cell.key()), seen.insert(cell.key());
     EXPECT_EQ(got, expected) << "share " << i;
@@ -78,6 +83,47 @@ TEST_P(ShareSplit, SharesStartAtGroupsSpreadOverThePlanAndKeepGroupsTogether) {
   }
   // As many different first groups as there can be: every share its own where groups are many.
   EXPECT_EQ(firstGroups.size(), std::min<std::size_t>(groups, static_cast<std::size_t>(c.shares)));
+}
+
+TEST_P(ShareSplit, EveryStrategyAndResolutionSpreadEvenlyOverTheShares) {
+  // Cells of one (strategy, resolution, object count) cost about the same; a share with more of
+  // the dear ones would finish last while the others wait. Each share gets as many as the groups
+  // allow: the counts differ by at most one.
+  const auto& c = GetParam();
+  for (const bool oneResolution : {false, true}) {
+    auto config = sweep(c.repeats, c.counts);
+    if (oneResolution) config.sweep.resolutions = {800};  // env3: the strategies alone alternate
+    const auto plan = cdb::planCells(config);
+    std::map<std::string, std::vector<int>> perShare;  // strategy@resolution -> cells per share
+    for (int i = 1; i <= c.shares; ++i)
+      for (const auto& cell : cdb::shareOf(plan, {i, c.shares})) {
+        auto& counts = perShare[cell.strategy + "@" + std::to_string(cell.resolution) + "/" +
+                                std::to_string(cell.objectCount)];
+        counts.resize(static_cast<std::size_t>(c.shares));
+        ++counts[static_cast<std::size_t>(i - 1)];
+      }
+    for (const auto& [what, counts] : perShare) {
+      const auto [lo, hi] = std::minmax_element(counts.begin(), counts.end());
+      EXPECT_LE(*hi - *lo, 1) << what << (oneResolution ? " (one resolution)" : "");
+    }
+  }
+}
+
+TEST(RunPlan, StrategyRepeatsLimitAStrategyToTheFirstSimulations) {
+  auto config = sweep(10, {});
+  config.sweep.strategyRepeats = {{"quick_cullide", 3}};
+  const auto plan = cdb::planCells(config);
+  std::map<std::string, std::set<int>> repeatsOf;
+  for (const auto& cell : plan) repeatsOf[cell.strategy].insert(cell.repeat);
+  EXPECT_EQ(repeatsOf["quick_cullide"], (std::set<int>{0, 1, 2}));
+  EXPECT_EQ(repeatsOf["cullide"].size(), 10u);
+  EXPECT_EQ(repeatsOf["ours"].size(), 10u);
+  EXPECT_EQ(plan.size(), (3u * 10u + 3u) * 8u);  // 3 strategies x 10 repeats + 3, 8 resolutions
+  // Shares still take every cell once.
+  std::set<std::string> seen;
+  for (int i = 1; i <= 2; ++i)
+    for (const auto& cell : cdb::shareOf(plan, {i, 2})) EXPECT_TRUE(seen.insert(cell.key()).second);
+  EXPECT_EQ(seen.size(), plan.size());
 }
 
 INSTANTIATE_TEST_SUITE_P(Sweeps, ShareSplit,
