@@ -49,21 +49,24 @@ std::vector<Cell> planCells(const ScenarioConfig& config) {
 }
 
 std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard) {
-  // Dealt round-robin in plan order, the deal turned by one share at each simulation group: cell
-  // k of group g (k counted from the group's first cell) goes to share (k + g) mod n. Without the
-  // turn, a cell's place in its group would fix its share, and so would its strategy and
-  // resolution (with 2 shares and one resolution, one share would get every cullide cell and the
-  // other every cullide_bvh cell); with it, every (strategy, resolution) is spread over the
-  // shares as evenly as the groups allow.
+  // Dealt in plan order to shares 1..n, then n..1, then 1..n again (so that within a group, where
+  // resolutions rise from cell to cell, no share always gets the larger of each n), the deal
+  // turned by one share at each simulation group: cell k of group g (k counted from the group's
+  // first cell, p its place in its run of n: k mod n, or n - 1 - k mod n in every second run)
+  // goes to share (p + g) mod n. Without the turn, a cell's place in its group would fix its
+  // share, and so would its strategy and resolution (with 2 shares and one resolution, one share
+  // would get every cullide cell and the other every cullide_bvh cell); with it, every (strategy,
+  // resolution) is spread over the shares as evenly as the groups allow.
   // Each dealt cell keeps the index of its simulation group.
   std::vector<Cell> dealt;
   std::vector<std::size_t> groupOf;
   std::size_t group = 0, groupStart = 0;
   for (std::size_t k = 0; k < cells.size(); ++k) {
     if (k > 0 && !cells[k].sameFrames(cells[k - 1])) ++group, groupStart = k;
+    const auto n = static_cast<std::size_t>(shard.count);
     const std::size_t inGroup = k - groupStart;
-    if (static_cast<int>((inGroup + group) % static_cast<std::size_t>(shard.count)) ==
-        shard.index - 1) {
+    const std::size_t place = (inGroup / n) % 2 == 0 ? inGroup % n : n - 1 - inGroup % n;
+    if (static_cast<int>((place + group) % n) == shard.index - 1) {
       dealt.push_back(cells[k]);
       groupOf.push_back(group);
     }

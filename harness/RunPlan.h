@@ -23,8 +23,8 @@ struct Cell {
   }
 };
 
-// A share of the cells: the i-th of n (1-based), cells dealt round-robin in plan order, turned by
-// one share at each simulation group; see shareOf for the order a share runs them in.
+// A share of the cells: the i-th of n (1-based), cells dealt in plan order back and forth over
+// the shares, the deal turned by one share at each simulation group; see shareOf.
 struct Shard {
   int index = 1;
   int count = 1;
@@ -38,10 +38,11 @@ struct Shard {
 // are simulated once, then strategies, then resolutions. A strategy in sweep.strategyRepeats has
 // cells in the first N repeats only.
 [[nodiscard]] std::vector<Cell> planCells(const ScenarioConfig& config);
-// The share's cells (cell k of simulation group g, counted from the group's first, when
-// (k + g) mod n = i - 1), run starting at the simulation group
-// ((i - 1) * groups / n) and wrapping around, so that shares started together simulate different
-// groups first and later read each other's recordings instead of simulating every group each.
+// The share's cells (cell k of simulation group g, counted from the group's first, with p its
+// place in its run of n: k mod n in even runs, n - 1 - k mod n in odd ones, when
+// (p + g) mod n = i - 1), run starting at the simulation group ((i - 1) * groups / n) and
+// wrapping around, so that shares started together simulate different groups first and later
+// read each other's recordings instead of simulating every group each.
 [[nodiscard]] std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard);
 
 }  // namespace cdb

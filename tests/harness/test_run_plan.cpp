@@ -40,19 +40,21 @@ struct SplitCase {
 
 class ShareSplit : public ::testing::TestWithParam<SplitCase> {};
 
-TEST_P(ShareSplit, EveryCellOnceAndRoundRobinBalanced) {
+TEST_P(ShareSplit, EveryCellOnceInTheShareTheDealGivesIt) {
   const auto& c = GetParam();
   const auto plan = cdb::planCells(sweep(c.repeats, c.counts));
   std::multiset<std::string> seen;
   for (int i = 1; i <= c.shares; ++i) {
     const auto share = cdb::shareOf(plan, {i, c.shares});
-    // Round-robin turned at each group: the share holds exactly the cells k of group g (k counted
-    // from the group's first cell) with (k + g) mod n = i - 1.
+    // Back and forth, turned at each group: the share holds exactly the cells k of group g (k
+    // counted from the group's first cell, p its place in its run of n) with (p + g) mod n = i - 1.
+    const auto n = static_cast<std::size_t>(c.shares);
     std::set<std::string> expected;
     for (std::size_t k = 0, start = 0; k < plan.size(); ++k) {
       if (k > 0 && !plan[k].sameFrames(plan[k - 1])) start = k;
-      if ((k - start + groupIndex(plan, plan[k])) % static_cast<std::size_t>(c.shares) ==
-          static_cast<std::size_t>(i - 1))
+      const std::size_t inGroup = k - start;
+      const std::size_t place = (inGroup / n) % 2 == 0 ? inGroup % n : n - 1 - inGroup % n;
+      if ((place + groupIndex(plan, plan[k])) % n == static_cast<std::size_t>(i - 1))
         expected.insert(plan[k].key());
     }
     std::set<std::string> got;
@@ -107,6 +109,22 @@ TEST_P(ShareSplit, EveryStrategyAndResolutionSpreadEvenlyOverTheShares) {
       EXPECT_LE(*hi - *lo, 1) << what << (oneResolution ? " (one resolution)" : "");
     }
   }
+}
+
+TEST(RunPlan, OneSimulationOnTwoSharesSplitsEachStrategysResolutionsEvenly) {
+  // One group (the quick profile's env1 and env2): the deal alone balances it. A cell's cost
+  // grows with its resolution, so each share gets the same sum of resolutions of every strategy
+  // (500+800+900+1200 against 600+700+1000+1100), not the odd ones against the even ones.
+  const auto plan = cdb::planCells(sweep(1, {}));
+  std::map<std::string, std::vector<int>> pixels;  // strategy -> sum of resolutions per share
+  for (int i = 1; i <= 2; ++i)
+    for (const auto& cell : cdb::shareOf(plan, {i, 2})) {
+      auto& sums = pixels[cell.strategy];
+      sums.resize(2);
+      sums[static_cast<std::size_t>(i - 1)] += cell.resolution;
+    }
+  ASSERT_EQ(pixels.size(), 4u);
+  for (const auto& [strategy, sums] : pixels) EXPECT_EQ(sums[0], sums[1]) << strategy;
 }
 
 TEST(RunPlan, StrategyRepeatsLimitAStrategyToTheFirstSimulations) {
