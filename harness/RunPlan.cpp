@@ -60,10 +60,10 @@ std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard) {
   // Each dealt cell keeps the index of its simulation group.
   std::vector<Cell> dealt;
   std::vector<std::size_t> groupOf;
+  const auto n = static_cast<std::size_t>(shard.count);
   std::size_t group = 0, groupStart = 0;
   for (std::size_t k = 0; k < cells.size(); ++k) {
     if (k > 0 && !cells[k].sameFrames(cells[k - 1])) ++group, groupStart = k;
-    const auto n = static_cast<std::size_t>(shard.count);
     const std::size_t inGroup = k - groupStart;
     const std::size_t place = (inGroup / n) % 2 == 0 ? inGroup % n : n - 1 - inGroup % n;
     if (static_cast<int>((place + group) % n) == shard.index - 1) {
@@ -76,8 +76,7 @@ std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard) {
   // the same group at the same time: the share that reaches a group first keeps its recording and
   // the others read it (CellStore::recordingPath).
   const std::size_t groups = group + 1;
-  const std::size_t start = static_cast<std::size_t>(shard.index - 1) * groups /
-                            static_cast<std::size_t>(shard.count);
+  const std::size_t start = static_cast<std::size_t>(shard.index - 1) * groups / n;
   const auto first = std::find_if(groupOf.begin(), groupOf.end(),
                                   [&](std::size_t g) { return g >= start; });
   std::rotate(dealt.begin(), dealt.begin() + (first - groupOf.begin()), dealt.end());

@@ -92,10 +92,13 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
     const auto eq = item.find('=');
     const std::string name = item.substr(0, eq);
     int n = 0;
-    const char* digits = eq == std::string::npos ? nullptr : item.c_str() + eq + 1;
-    const auto parsed = digits ? std::from_chars(digits, item.c_str() + item.size(), n)
-                               : std::from_chars_result{nullptr, std::errc::invalid_argument};
-    if (!digits || parsed.ec != std::errc() || parsed.ptr != item.c_str() + item.size())
+    bool parsed = false;
+    if (eq != std::string::npos) {
+      const char* end = item.data() + item.size();
+      const auto [ptr, ec] = std::from_chars(item.data() + eq + 1, end, n);
+      parsed = ec == std::errc() && ptr == end;
+    }
+    if (!parsed)
       throw InputError("--strategy-repeats '" + item + "': expected NAME=N, e.g. quick_cullide=3");
     if (std::find(config.sweep.strategies.begin(), config.sweep.strategies.end(), name) ==
         config.sweep.strategies.end())

@@ -91,7 +91,7 @@ struct SweepSpec {
   std::vector<int> objectCounts;  // values for countedGroup's count
   int repeats = 1;               // independent simulations (seed, seed+1, ...)
   std::vector<std::string> strategies{"cullide"};
-  // Strategies measured on only the first N of the repeats (N < repeats): a costly strategy
+  // Strategies measured on only the first N of the repeats (N <= repeats): a costly strategy
   // outside the thesis' tables need not take as long as the tables' own (`--strategy-repeats`).
   std::map<std::string, int> strategyRepeats;
 };
