@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -19,7 +20,7 @@
 
 #include "core/Errors.h"
 #include "core/Fnv1a.h"
-#include "scenes/PlyBounds.h"
+#include "scenes/PlyCanonical.h"
 
 namespace cdb {
 namespace {
@@ -296,28 +297,29 @@ void failPlyHeader(PlyHeaderScan::State state, int line, const std::string& name
                    "(the file is cut short or not a PLY)");
 }
 
-// A PLY's header must end where assimp can see it, and its body must hold what the header
-// declares (PlyBounds.h).
-void checkPly(std::string_view bytes, std::string_view hint, const std::string& name) {
-  if (!readAsPly(bytes.substr(0, 64), std::string(hint))) return;
+// A PLY's header must end where assimp can see it; the file is then read as the format defines
+// it and handed to assimp in the form it reads the same way (PlyCanonical.h). None: not a PLY.
+std::optional<std::string> canonicalIfPly(std::string_view bytes, std::string_view hint,
+                                          const std::string& name) {
+  if (!readAsPly(bytes.substr(0, 64), std::string(hint))) return std::nullopt;
   PlyHeaderScan scan;
   const auto state = scan.feed(bytes, true);
   if (state != PlyHeaderScan::State::Ends) failPlyHeader(state, scan.line(), name);
-  checkPlyBodyBounds(bytes, scan.bodyStart(), name);
+  return canonicalPly(bytes, scan.bodyStart(), name);
 }
 
-// The same on a file. A file that cannot be opened is left to assimp's message; a PLY is read
-// whole, as assimp reads it anyway.
-void checkPly(const std::filesystem::path& file) {
+// The same on a file, read whole (assimp reads it whole anyway). A file that cannot be opened is
+// left to assimp's message.
+std::optional<std::string> canonicalIfPly(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) return;
+  if (!in) return std::nullopt;
   std::string start(64, '\0');
   in.read(start.data(), static_cast<std::streamsize>(start.size()));
   start.resize(static_cast<std::size_t>(in.gcount()));
-  if (!readAsPly(start, file.extension().string())) return;
+  if (!readAsPly(start, file.extension().string())) return std::nullopt;
   std::ostringstream rest;
   rest << in.rdbuf();
-  checkPly(start + rest.str(), file.extension().string(), file.string());
+  return canonicalIfPly(start + rest.str(), file.extension().string(), file.string());
 }
 
 // assimp 5.2's OBJ importer crashes on a material library statement when it reads from memory (it
@@ -355,9 +357,13 @@ LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& op
       !ec) {
     throw InputError(name + ": mesh has no triangles (the file is empty)");
   }
-  checkPly(file);
+  const auto ply = canonicalIfPly(file);
   Assimp::Importer importer;
-  const aiScene* scene = triangulated(importer, importer.ReadFile(name, 0), name);
+  const aiScene* scene =
+      triangulated(importer,
+                   ply ? importer.ReadFileFromMemory(ply->data(), ply->size(), 0, "ply")
+                       : importer.ReadFile(name, 0),
+                   name);
   LoadedMesh loaded = fromScene(scene, importer, name, options);
   loaded.mesh.name = file.stem().string();
   return loaded;
@@ -366,13 +372,17 @@ LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& op
 LoadedMesh loadMeshFromMemory(std::span<const std::byte> bytes, std::string_view formatHint,
                               const std::string& name, const MeshLoadOptions& options) {
   if (bytes.empty()) throw InputError(name + ": mesh has no triangles (the file is empty)");
-  checkPly(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), formatHint,
-           name);
+  const auto ply =
+      canonicalIfPly(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                     formatHint, name);
   std::string hint(formatHint);
   std::transform(hint.begin(), hint.end(), hint.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   std::string obj;
-  if (hint == "obj" || hint.empty()) {
+  if (ply) {
+    hint = "ply";
+    bytes = std::as_bytes(std::span<const char>(ply->data(), ply->size()));
+  } else if (hint == "obj" || hint.empty()) {
     obj = withoutMaterialLibraries(
         std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
     bytes = std::as_bytes(std::span<const char>(obj.data(), obj.size()));
