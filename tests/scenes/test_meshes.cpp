@@ -142,16 +142,17 @@ TEST(MeshLoader, ReadsPly) {
 // OBJ.
 TEST(MeshLoader, StanfordStylePlyGivesTheSameMeshAsTheObj) {
   ScratchDir dir;
-  const auto obj = dir.write("tetra.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
-                                          "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
-  const auto ply = dir.write(
-      "tetra.ply",
-      "ply\r\nformat ascii 1.0\r\ncomment zipper output\r\nelement vertex 4\r\n"
-      "property float x\r\nproperty float y\r\nproperty float z\r\n"
-      "property float confidence\r\nproperty float intensity\r\nelement face 4\r\n"
-      "property list uchar int vertex_indices\r\nend_header\r\n"
-      "0 0 0 1 0.5\r\n1 0 0 1 0.5 0 1 0\r\n1 0.5\r\n0 0 1 1 0.5\r\n"
-      "3 0 2 1\r\n3 0 1 3 3 0 3 2\r\n3 1 2 3\r\n");
+  const auto obj = dir.write("tetra.obj",
+                             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                             "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const auto ply =
+      dir.write("tetra.ply",
+                "ply\r\nformat ascii 1.0\r\ncomment zipper output\r\nelement vertex 4\r\n"
+                "property float x\r\nproperty float y\r\nproperty float z\r\n"
+                "property float confidence\r\nproperty float intensity\r\nelement face 4\r\n"
+                "property list uchar int vertex_indices\r\nend_header\r\n"
+                "0 0 0 1 0.5\r\n1 0 0 1 0.5 0 1 0\r\n1 0.5\r\n0 0 1 1 0.5\r\n"
+                "3 0 2 1\r\n3 0 1 3 3 0 3 2\r\n3 1 2 3\r\n");
   const Mesh fromObj = loadMesh(obj).mesh;
   const Mesh fromPly = loadMesh(ply).mesh;
   EXPECT_EQ(fromPly.vertices, fromObj.vertices);
