@@ -1,12 +1,12 @@
 // The CPU rasteriser's conservative guarantee against a brute-force reference in exact rational
-// arithmetic (GMP): for random triangles (and box faces drawn as quads) at several resolutions (ordinary, sub-pixel, slivers,
-// edge-on segments, points, vertices on pixel borders, partly off-screen), every pixel whose closed
-// square the triangle meets is covered; a write stores at most the triangle's smallest depth over
-// that part of the square, and a test uses at least its largest. Run with no depth epsilon and no
-// margin, so the bounds hold by themselves; and coverage stays within a thousandth of a pixel of
-// the exact one (small triangles: within their pixel box).
-#include <gtest/gtest.h>
+// arithmetic (GMP): for random triangles (and box faces drawn as quads) at several resolutions
+// (ordinary, sub-pixel, slivers, edge-on segments, points, vertices on pixel borders, partly
+// off-screen), every pixel whose closed square the triangle meets is covered; a write stores at
+// most the triangle's smallest depth over that part of the square, and a test uses at least its
+// largest. Run with no depth epsilon and no margin, so the bounds hold by themselves; and coverage
+// stays within a thousandth of a pixel of the exact one (small triangles: within their pixel box).
 #include <gmpxx.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
@@ -57,7 +57,7 @@ std::optional<ExactBounds> exactOverSquare(const ScreenTriangle& t, const mpq_cl
     }
     poly = std::move(out);
   };
-  clip(ax - x0, ux, vx);   // x >= x0
+  clip(ax - x0, ux, vx);    // x >= x0
   clip(x1 - ax, -ux, -vx);  // x <= x1
   clip(ay - y0, uy, vy);
   clip(y1 - ay, -uy, -vy);
@@ -108,9 +108,15 @@ class TriangleMaker {
       for (int i = 0; i < 3; ++i) t.x[i] = cx + u(-size, size), t.y[i] = cy + u(-size, size);
     };
     switch (shape) {
-      case Shape::Ordinary: around(std::exp(u(std::log(0.5), std::log(12.0)))); break;
-      case Shape::Large: around(std::exp(u(std::log(12.0), std::log(40.0)))); break;
-      case Shape::SubPixel: around(std::exp(u(std::log(0.005), std::log(0.6)))); break;
+      case Shape::Ordinary:
+        around(std::exp(u(std::log(0.5), std::log(12.0))));
+        break;
+      case Shape::Large:
+        around(std::exp(u(std::log(12.0), std::log(40.0))));
+        break;
+      case Shape::SubPixel:
+        around(std::exp(u(std::log(0.005), std::log(0.6))));
+        break;
       case Shape::Sliver: {
         const double angle = u(0, 6.283185307179586), length = u(2, 25);
         const double width = std::exp(u(std::log(1e-5), std::log(0.05)));
@@ -242,9 +248,10 @@ bool testFindsOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Scr
   return testQuadsUntilOccluded(buffer, pass, std::span<const ScreenQuad>(&q, 1), work) == 0u;
 }
 
-// Checks one triangle (or quad) at one resolution in a pass with sign +1 (or -1: keys negated).
+// Checks one piece (a triangle or a quad) at one resolution in a pass with sign +1 (or -1: keys
+// negated).
 template <class Piece>
-void checkTriangle(Piece t, int resolution, float sign, Tally& tally) {
+void checkPiece(Piece t, int resolution, float sign, Tally& tally) {
   RasterPass pass;
   pass.resolution = resolution;
   pass.sign = sign;
@@ -252,7 +259,7 @@ void checkTriangle(Piece t, int resolution, float sign, Tally& tally) {
   pass.keyHi = sign > 0 ? 1.f : 0.f;
   if (sign < 0)
     for (double& k : t.k) k -= 1.0;  // keys of a reversed pass: -stored, in [-1, 0]
-  pass.depthEpsilon = 0.0;  // no help: the bounds must hold by construction
+  pass.depthEpsilon = 0.0;           // no help: the bounds must hold by construction
   pass.marginPx = 0.0;
   pass.conservative = true;
   const float farKey = kFar;  // in both orders
@@ -278,8 +285,8 @@ void checkTriangle(Piece t, int resolution, float sign, Tally& tally) {
         ++tally.coveredPixels;
         ASSERT_LT(key, farKey) << "write missed pixel (" << x << ", " << y << ") at " << resolution;
         ASSERT_LE(mpq_class(key), exact->minKey)
-            << "write stored a key farther than the triangle's nearest at (" << x
-            << ", " << y << ")";
+            << "write stored a key farther than the triangle's nearest at (" << x << ", " << y
+            << ")";
       } else if (key < farKey) {
         // A small triangle may cover its whole pixel box (smallBox); any other pixel it covers
         // is within a thousandth of a pixel of it.
@@ -302,8 +309,8 @@ void checkTriangle(Piece t, int resolution, float sign, Tally& tally) {
       const float storedKey = std::clamp(floatAtLeast(exact->maxKey), pass.keyLo, pass.keyHi);
       setPixel(buffer, x, y, sign * storedKey);
       ASSERT_TRUE(testFindsOccluded(buffer, pass, t, work))
-          << "test used a key nearer than the triangle's farthest at (" << x << ", " << y
-          << ") at " << resolution;
+          << "test used a key nearer than the triangle's farthest at (" << x << ", " << y << ") at "
+          << resolution;
     }
   }
 }
@@ -313,10 +320,11 @@ struct ShapeCase {
   const char* name;
   int count;
 };
-const ShapeCase kShapes[] = {{Shape::Ordinary, "ordinary", 60},  {Shape::SubPixel, "sub-pixel", 80},
-                             {Shape::Sliver, "sliver", 40},      {Shape::EdgeOn, "edge-on", 40},
-                             {Shape::Point, "point", 30},        {Shape::OnBorders, "on borders", 40},
-                             {Shape::Large, "large", 6}};
+const ShapeCase kShapes[] = {
+    {Shape::Ordinary, "ordinary", 60}, {Shape::SubPixel, "sub-pixel", 80},
+    {Shape::Sliver, "sliver", 40},     {Shape::EdgeOn, "edge-on", 40},
+    {Shape::Point, "point", 30},       {Shape::OnBorders, "on borders", 40},
+    {Shape::Large, "large", 6}};
 
 class CpuRasteriserProperty : public testing::TestWithParam<int> {
  protected:
@@ -331,7 +339,7 @@ class CpuRasteriserProperty : public testing::TestWithParam<int> {
                     (sign < 0 ? 7u : 0u));
         Tally tally;
         for (int i = 0; i < s.count; ++i) {
-          checkTriangle(maker.make(s.shape, resolution), resolution, sign, tally);
+          checkPiece(maker.make(s.shape, resolution), resolution, sign, tally);
           if (HasFatalFailure()) {
             ADD_FAILURE() << s.name << " " << piece << " " << i << ", sign " << sign;
             return;
@@ -352,7 +360,8 @@ TEST_P(CpuRasteriserProperty, QuadsCoverEveryTouchedPixelWithSafeDepths) {
   checkEveryShape<QuadMaker>(29u, "quad");
 }
 
-// Named by resolution (not by index), so that a gtest filter and ctest (which shows the value) agree.
+// Named by resolution (not by index), so that a gtest filter and ctest (which shows the value)
+// agree.
 INSTANTIATE_TEST_SUITE_P(Resolutions, CpuRasteriserProperty, testing::Values(64, 256, 800),
                          [](const auto& param) { return std::to_string(param.param); });
 
