@@ -85,10 +85,12 @@ TEST(MicroBenchmarks, CheapSelectionWritesJsonWithCounters) {
 
   // The ground truth finds what every cull followed by the exact phase found.
   const auto& truth = byName.at("truth/env3");
-  for (const auto& [name, cull] : byName)
-    if (name.starts_with("cull/"))
+  for (const auto& [name, cull] : byName) {
+    if (name.starts_with("cull/")) {
       EXPECT_EQ(truth["colliding_pairs"].get<double>(), cull["colliding_pairs"].get<double>())
           << name;
+    }
+  }
 
   const auto& dynamics = byName.at("dynamics/env3");
   EXPECT_GT(dynamics["bodies"].get<double>(), 0.0);

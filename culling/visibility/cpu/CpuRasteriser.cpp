@@ -1,12 +1,12 @@
 // Compiled once per SIMD target (Highway's foreach_target), dispatched at run time.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "culling/visibility/cpu/CpuRasteriser.cpp"
+#include "culling/visibility/cpu/CpuRasteriser.h"
+
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 #include <algorithm>
-
-#include "culling/visibility/cpu/CpuRasteriser.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace cdb {
@@ -103,8 +103,8 @@ HWY_INLINE void startRow(const Lanes& l, int y, const TriangleRaster& r, RowSetu
 }
 
 // Covered lanes of one step, given the lanes' dx and the box's columns as dx.
-HWY_INLINE hn::Mask<D> covered(const Lanes& l, const RowSetup& row, hn::Vec<D> dx,
-                               hn::Vec<D> boxLo, hn::Vec<D> boxHi) {
+HWY_INLINE hn::Mask<D> covered(const Lanes& l, const RowSetup& row, hn::Vec<D> dx, hn::Vec<D> boxLo,
+                               hn::Vec<D> boxHi) {
   auto m = hn::And(hn::Ge(dx, boxLo), hn::Le(dx, boxHi));
   for (int e = 0; e < 3; ++e) {
     const auto f = hn::MulAdd(l.a[e], dx, row.base[e]);
@@ -122,11 +122,30 @@ HWY_INLINE hn::Vec<D> keyAt(const Lanes& l, const RowSetup& row, hn::Vec<D> dx) 
   return hn::Min(hn::Max(hn::MulAdd(l.za, dx, row.zBase), l.zLo), l.zHi);
 }
 
+// The SIMD steps of a triangle's span in one tile, row by row: visit(y, lx, dx, row) for each step
+// that holds pixels of the span, until it returns true (then true). `pixels` grows by each row's
+// pixels.
+template <class Visit>
+HWY_INLINE bool forEachStep(const Lanes& l, const TriangleRaster& r, const TileSpan& span, int tx,
+                            std::uint64_t& pixels, const Visit& visit) {
+  const D d;
+  const int n = static_cast<int>(hn::Lanes(d));
+  RowSetup row;
+  for (int y = span.ry0; y <= span.ry1; ++y) {
+    startRow(l, y, r, row);
+    pixels += static_cast<std::uint64_t>(span.columns());
+    for (int lx = 0; lx < kTile; lx += n) {
+      if (!span.holdsStep(tx, lx, n)) continue;
+      if (visit(y, lx, hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0)), row)) return true;
+    }
+  }
+  return false;
+}
+
 // True when some covered sample is at or behind the stored depth.
 bool testOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
              RasterWork& work) {
   const D d;
-  const int n = static_cast<int>(hn::Lanes(d));
   const int tx0 = r.x0 / kTile, tx1 = r.x1 / kTile, ty0 = r.y0 / kTile, ty1 = r.y1 / kTile;
   const bool oneTile = tx0 == tx1 && ty0 == ty1;
   const auto sign = hn::Set(d, pass.sign);
@@ -144,25 +163,16 @@ bool testOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaste
       const bool uniform = buffer.uniform(index);
       const float* values = buffer.tile(index);
       const TileSpan span = spanInTile(r, tx, ty);
-      RowSetup row;
-      for (int y = span.ry0; y <= span.ry1; ++y) {
-        startRow(l, y, r, row);
-        work.pixelsTested += static_cast<std::uint64_t>(span.columns());
-        for (int lx = 0; lx < kTile; lx += n) {
-          if (!span.holdsStep(tx, lx, n)) continue;
-          const auto dx = hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0));
-          const auto m = covered(l, row, dx, span.boxLo, span.boxHi);
-          if (allBehind) {
-            if (!hn::AllFalse(d, m)) return true;
-            continue;
-          }
-          const auto key = keyAt(l, row, dx);
-          const auto storedKey =
-              uniform ? hn::Set(d, stored.nearest)
-                      : hn::Mul(hn::LoadU(d, values + (y % kTile) * kTile + lx), sign);
-          if (!hn::AllFalse(d, hn::And(m, hn::Ge(key, storedKey)))) return true;
-        }
-      }
+      const auto occluded = [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
+        const auto m = covered(l, row, dx, span.boxLo, span.boxHi);
+        if (allBehind) return !hn::AllFalse(d, m);
+        const auto key = keyAt(l, row, dx);
+        const auto storedKey = uniform
+                                   ? hn::Set(d, stored.nearest)
+                                   : hn::Mul(hn::LoadU(d, values + (y % kTile) * kTile + lx), sign);
+        return !hn::AllFalse(d, hn::And(m, hn::Ge(key, storedKey)));
+      };
+      if (forEachStep(l, r, span, tx, work.pixelsTested, occluded)) return true;
     }
   }
   return false;
@@ -188,26 +198,20 @@ template <bool kWhole>
 HWY_INLINE bool writeTile(float* values, const Lanes& l, const TriangleRaster& r,
                           const TileSpan& span, int tx, hn::Vec<D> sign, RasterWork& work) {
   const D d;
-  const int n = static_cast<int>(hn::Lanes(d));
   bool changed = false;
-  RowSetup row;
-  for (int y = span.ry0; y <= span.ry1; ++y) {
-    startRow(l, y, r, row);
-    work.pixelsWritten += static_cast<std::uint64_t>(span.columns());
-    for (int lx = 0; lx < kTile; lx += n) {
-      if (!span.holdsStep(tx, lx, n)) continue;
-      const auto dx = hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0));
-      const auto m = kWhole ? inBox(dx, span.boxLo, span.boxHi)
-                            : covered(l, row, dx, span.boxLo, span.boxHi);
-      float* at = values + (y % kTile) * kTile + lx;
-      const auto storedKey = hn::Mul(hn::LoadU(d, at), sign);
-      const auto key = keyAt(l, row, dx);
-      const auto nearer = hn::And(m, hn::Lt(key, storedKey));
-      if (hn::AllFalse(d, nearer)) continue;
-      hn::StoreU(hn::Mul(hn::IfThenElse(nearer, key, storedKey), sign), d, at);
-      changed = true;
-    }
-  }
+  forEachStep(l, r, span, tx, work.pixelsWritten,
+              [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
+                const auto m = kWhole ? inBox(dx, span.boxLo, span.boxHi)
+                                      : covered(l, row, dx, span.boxLo, span.boxHi);
+                float* at = values + (y % kTile) * kTile + lx;
+                const auto storedKey = hn::Mul(hn::LoadU(d, at), sign);
+                const auto key = keyAt(l, row, dx);
+                const auto nearer = hn::And(m, hn::Lt(key, storedKey));
+                if (hn::AllFalse(d, nearer)) return false;
+                hn::StoreU(hn::Mul(hn::IfThenElse(nearer, key, storedKey), sign), d, at);
+                changed = true;
+                return false;
+              });
   return changed;
 }
 
@@ -377,8 +381,8 @@ std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer, const RasterPass&
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
                       RasterWork& work) {
-  HWY_DYNAMIC_DISPATCH(TestEach)(buffer, pass, triangles.data(), triangles.size(), fullyVisible,
-                                 work);
+  HWY_DYNAMIC_DISPATCH(TestEach)
+  (buffer, pass, triangles.data(), triangles.size(), fullyVisible, work);
 }
 
 void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
