@@ -1,12 +1,12 @@
 // Compiled once per SIMD target (Highway's foreach_target), dispatched at run time.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "culling/visibility/cpu/CpuRasteriser.cpp"
-#include "culling/visibility/cpu/CpuRasteriser.h"
-
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 #include <algorithm>
+
+#include "culling/visibility/cpu/CpuRasteriser.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace cdb {
@@ -103,8 +103,8 @@ HWY_INLINE void startRow(const Lanes& l, int y, const TriangleRaster& r, RowSetu
 }
 
 // Covered lanes of one step, given the lanes' dx and the box's columns as dx.
-HWY_INLINE hn::Mask<D> covered(const Lanes& l, const RowSetup& row, hn::Vec<D> dx, hn::Vec<D> boxLo,
-                               hn::Vec<D> boxHi) {
+HWY_INLINE hn::Mask<D> covered(const Lanes& l, const RowSetup& row, hn::Vec<D> dx,
+                               hn::Vec<D> boxLo, hn::Vec<D> boxHi) {
   auto m = hn::And(hn::Ge(dx, boxLo), hn::Le(dx, boxHi));
   for (int e = 0; e < 3; ++e) {
     const auto f = hn::MulAdd(l.a[e], dx, row.base[e]);
@@ -381,8 +381,8 @@ std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer, const RasterPass&
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
                       RasterWork& work) {
-  HWY_DYNAMIC_DISPATCH(TestEach)
-  (buffer, pass, triangles.data(), triangles.size(), fullyVisible, work);
+  HWY_DYNAMIC_DISPATCH(TestEach)(buffer, pass, triangles.data(), triangles.size(), fullyVisible,
+                                 work);
 }
 
 void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
