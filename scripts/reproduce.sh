@@ -31,7 +31,8 @@
 # --no-build runs build/cdbench as it is (a machine that has the binary and its libraries but
 # not the packages to build it); --no-report leaves the report for `scripts/report.py DIR
 # --primary NAME` on a machine with python3-matplotlib.
-# CDBENCH_ASSETS must name a folder with dragon_vrip_res3 (or run scripts/fetch-assets.sh).
+# env2 needs the Stanford dragon (dragon_vrip_res3) on the asset path ($CDBENCH_ASSETS, then
+# assets/); when it is not there, scripts/fetch-assets.sh fetches it into assets/ first.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 profile=quick
@@ -66,10 +67,16 @@ case "$profile" in
   full) common=() ;;
 esac
 
-if ((build)); then
-  bash scripts/setup.sh
-  CDBENCH_BUILD_TARGETS=cdbench bash scripts/build.sh release
-fi
+if ((build)); then bash scripts/setup.sh; fi
+# The meshes the chosen environments need and the project does not ship (set-up installs npm,
+# which fetches them). Without them those environments fail; the others still run.
+for env in ${envs//,/ }; do
+  if grep -q 'asset: dragon_vrip_res3' "configs/$env.yaml" 2>/dev/null; then
+    bash scripts/fetch-assets.sh --if-missing ||
+      echo "reproduce: $env needs dragon_vrip_res3 and will fail (see the line above)" >&2
+  fi
+done
+if ((build)); then CDBENCH_BUILD_TARGETS=cdbench bash scripts/build.sh release; fi
 
 out=${out:-results/$profile}
 mkdir -p "$out"

