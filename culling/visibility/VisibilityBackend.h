@@ -79,17 +79,32 @@ struct VisibilityCounters {
   // on the machine. Only backends that rasterise themselves count them (0 elsewhere).
   std::uint64_t pixelsTested = 0;
   std::uint64_t pixelsWritten = 0;
+  // Backends that evaluate a pass tile by tile (cpu): visits of a piece of a draw (a chunk of
+  // triangles, a box) to a screen tile it may reach. Tests: all of them, those decided without
+  // pixels by bounds, those skipped because another tile already found the piece occluded.
+  // Writes: all of them, and those rasterised (a later test read them).
+  std::uint64_t tileTests = 0;
+  std::uint64_t tileTestsByBounds = 0;
+  std::uint64_t tileTestsSkipped = 0;
+  std::uint64_t tileWrites = 0;
+  std::uint64_t tileWritesRasterised = 0;
 
   VisibilityCounters& operator+=(const VisibilityCounters& o) {
     queries += o.queries; draws += o.draws; trianglesDrawn += o.trianglesDrawn;
     depthClears += o.depthClears; passes += o.passes; fetches += o.fetches;
     pixelsTested += o.pixelsTested; pixelsWritten += o.pixelsWritten;
+    tileTests += o.tileTests; tileTestsByBounds += o.tileTestsByBounds;
+    tileTestsSkipped += o.tileTestsSkipped; tileWrites += o.tileWrites;
+    tileWritesRasterised += o.tileWritesRasterised;
     return *this;
   }
   friend VisibilityCounters operator-(VisibilityCounters a, const VisibilityCounters& b) {
     a.queries -= b.queries; a.draws -= b.draws; a.trianglesDrawn -= b.trianglesDrawn;
     a.depthClears -= b.depthClears; a.passes -= b.passes; a.fetches -= b.fetches;
     a.pixelsTested -= b.pixelsTested; a.pixelsWritten -= b.pixelsWritten;
+    a.tileTests -= b.tileTests; a.tileTestsByBounds -= b.tileTestsByBounds;
+    a.tileTestsSkipped -= b.tileTestsSkipped; a.tileWrites -= b.tileWrites;
+    a.tileWritesRasterised -= b.tileWritesRasterised;
     return a;
   }
 };

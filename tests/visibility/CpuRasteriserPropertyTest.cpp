@@ -211,11 +211,11 @@ Window windowOf(const Piece& t, int resolution) {
 }
 
 void setPixel(CpuDepthBuffer& buffer, int x, int y, float value) {
-  const std::size_t index = buffer.tileIndex(x / 8, y / 8);
+  const std::size_t index = buffer.blockIndex(x / 8, y / 8);
   buffer.materialise(index);
-  buffer.tile(index)[(y % 8) * 8 + x % 8] = value;
-  buffer.tileMin(index) = std::min(buffer.tileMin(index), value);
-  buffer.tileMax(index) = std::max(buffer.tileMax(index), value);
+  buffer.block(index)[(y % 8) * 8 + x % 8] = value;
+  buffer.blockMin(index) = std::min(buffer.blockMin(index), value);
+  buffer.blockMax(index) = std::max(buffer.blockMax(index), value);
 }
 
 // The smallest float not below q.

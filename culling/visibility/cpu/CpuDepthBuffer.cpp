@@ -5,43 +5,42 @@
 namespace cdb {
 
 void CpuDepthBuffer::resize(int resolution) {
+  const int blocks = (resolution + kBlock - 1) / kBlock;
+  place(resolution, 0, 0, blocks, blocks);
+}
+
+void CpuDepthBuffer::place(int resolution, int bx0, int by0, int nx, int ny) {
+  const int frameBlocks = (resolution + kBlock - 1) / kBlock;
   resolution_ = resolution;
-  tilesX_ = (resolution + kTile - 1) / kTile;
-  tilesY_ = tilesX_;
-  const std::size_t tiles = static_cast<std::size_t>(tilesX_) * static_cast<std::size_t>(tilesY_);
-  // resize() keeps the capacity: a pass at a lower resolution allocates nothing.
-  data_.resize(tiles * kTilePixels);
-  min_.resize(tiles);
-  max_.resize(tiles);
-  uniform_.resize(tiles);
+  bx0_ = bx0, by0_ = by0;
+  nx_ = std::max(0, std::min(nx, frameBlocks - bx0));
+  ny_ = std::max(0, std::min(ny, frameBlocks - by0));
+  px1_ = std::min(resolution, (bx0 + nx_) * kBlock) - 1;
+  py1_ = std::min(resolution, (by0 + ny_) * kBlock) - 1;
+  const std::size_t count = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+  // resize() keeps the capacity: a smaller window allocates nothing.
+  data_.resize(count * kBlockPixels);
+  min_.resize(count);
+  max_.resize(count);
+  uniform_.resize(count);
 }
 
 void CpuDepthBuffer::clear(float value) {
   std::fill(min_.begin(), min_.end(), value);
   std::fill(max_.begin(), max_.end(), value);
   std::fill(uniform_.begin(), uniform_.end(), std::uint8_t{1});
-  materialised_.clear();
-}
-
-void CpuDepthBuffer::clearMaterialised(float value) {
-  for (std::uint32_t index : materialised_) {
-    min_[index] = max_[index] = value;
-    uniform_[index] = 1;
-  }
-  materialised_.clear();
 }
 
 void CpuDepthBuffer::materialise(std::size_t index) {
   if (!uniform_[index]) return;
-  std::fill_n(tile(index), kTilePixels, min_[index]);
+  std::fill_n(block(index), kBlockPixels, min_[index]);
   uniform_[index] = 0;
-  materialised_.push_back(static_cast<std::uint32_t>(index));
 }
 
 float CpuDepthBuffer::at(int x, int y) const {
-  const std::size_t index = tileIndex(x / kTile, y / kTile);
+  const std::size_t index = blockIndex(x / kBlock, y / kBlock);
   if (uniform_[index]) return min_[index];
-  return tile(index)[(y % kTile) * kTile + x % kTile];
+  return block(index)[(y % kBlock) * kBlock + x % kBlock];
 }
 
 }  // namespace cdb

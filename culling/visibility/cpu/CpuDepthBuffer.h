@@ -1,64 +1,78 @@
 #pragma once
-// The CPU backend's depth buffer: float stored depths (as GL_DEPTH_COMPONENT32F) in 8x8 tiles, each
-// tile with the nearest and farthest value it holds, so that a test or a write can decide a whole
-// tile from those bounds without visiting its pixels. Clears are lazy: a cleared tile is marked
-// uniform (every pixel at one value) and only filled when a write reaches it.
+// The CPU backend's depth storage: float stored depths (as GL_DEPTH_COMPONENT32F) in 8x8 blocks,
+// each with the nearest and farthest value it holds, so that a test or a write can decide a whole
+// block from those bounds without visiting its pixels. A buffer holds a window of a frame's
+// blocks: one screen tile (the backend evaluates a pass tile by tile) or the whole frame. Blocks
+// sit on the frame's grid whatever the window, so a triangle covers the same pixels with the same
+// keys in any window. Clears are lazy: a cleared block is uniform (every pixel at one value) and
+// only filled when a write reaches it.
 #include <cstddef>
 #include <cstdint>
-#include <span>
 #include <vector>
 
 namespace cdb {
 
 class CpuDepthBuffer {
  public:
-  static constexpr int kTile = 8;
-  static constexpr int kTilePixels = kTile * kTile;
+  static constexpr int kBlock = 8;
+  static constexpr int kBlockPixels = kBlock * kBlock;
 
-  // Sizes the buffer for `resolution` x `resolution` pixels (memory is only allocated when it
-  // grows) and leaves its contents undefined until clear().
+  // The whole resolution x resolution frame.
   void resize(int resolution);
-  // Every pixel at `value` (stored depth units).
+  // Blocks [bx0, bx0 + nx) x [by0, by0 + ny) of a resolution x resolution frame (nx, ny clipped to
+  // the frame). Memory is only allocated when the window grows; contents are undefined until
+  // clear().
+  void place(int resolution, int bx0, int by0, int nx, int ny);
+  // Every pixel of the window at `value` (stored depth units).
   void clear(float value);
 
   [[nodiscard]] int resolution() const { return resolution_; }
-  [[nodiscard]] int tilesX() const { return tilesX_; }
-  [[nodiscard]] int tilesY() const { return tilesY_; }
-  [[nodiscard]] std::size_t tileIndex(int tx, int ty) const {
-    return static_cast<std::size_t>(ty) * static_cast<std::size_t>(tilesX_) +
-           static_cast<std::size_t>(tx);
+  // The window, in blocks of the frame (inclusive), and in pixels (inclusive, inside the frame).
+  [[nodiscard]] int blockX0() const { return bx0_; }
+  [[nodiscard]] int blockY0() const { return by0_; }
+  [[nodiscard]] int blockX1() const { return bx0_ + nx_ - 1; }
+  [[nodiscard]] int blockY1() const { return by0_ + ny_ - 1; }
+  [[nodiscard]] int pixelX0() const { return bx0_ * kBlock; }
+  [[nodiscard]] int pixelY0() const { return by0_ * kBlock; }
+  [[nodiscard]] int pixelX1() const { return px1_; }
+  [[nodiscard]] int pixelY1() const { return py1_; }
+  [[nodiscard]] bool holds(int x, int y) const {
+    return x >= pixelX0() && x <= px1_ && y >= pixelY0() && y <= py1_;
   }
-  // The tile's 64 values, row by row (valid only when the tile is not uniform).
-  [[nodiscard]] float* tile(std::size_t index) { return data_.data() + index * kTilePixels; }
-  [[nodiscard]] const float* tile(std::size_t index) const {
-    return data_.data() + index * kTilePixels;
-  }
-  // Smallest and largest stored value in the tile: exact after a clear, and never narrower than
-  // the tile's contents (writes keep them conservative).
-  [[nodiscard]] float& tileMin(std::size_t index) { return min_[index]; }
-  [[nodiscard]] float& tileMax(std::size_t index) { return max_[index]; }
-  // Uniform: every pixel of the tile holds tileMin() (== tileMax()); the 64 values are not filled.
-  [[nodiscard]] bool uniform(std::size_t index) const { return uniform_[index] != 0; }
-  // Fills a uniform tile with its value, so that pixels can be written one by one.
-  void materialise(std::size_t index);
-  // The tiles materialised since the last clear, each once, in the order they were.
-  [[nodiscard]] std::span<const std::uint32_t> materialisedTiles() const { return materialised_; }
-  // clear(value) at the cost of the tiles materialised since the last clear: for a buffer that
-  // held `value` everywhere before them.
-  void clearMaterialised(float value);
 
-  // Stored depth of one pixel (tests and debugging; slow).
+  // Index of block (bx, by) of the frame, which must lie in the window.
+  [[nodiscard]] std::size_t blockIndex(int bx, int by) const {
+    return static_cast<std::size_t>(by - by0_) * static_cast<std::size_t>(nx_) +
+           static_cast<std::size_t>(bx - bx0_);
+  }
+  [[nodiscard]] std::size_t blocks() const { return min_.size(); }
+  // The block's 64 values, row by row (valid only when the block is not uniform).
+  [[nodiscard]] float* block(std::size_t index) { return data_.data() + index * kBlockPixels; }
+  [[nodiscard]] const float* block(std::size_t index) const {
+    return data_.data() + index * kBlockPixels;
+  }
+  // Smallest and largest stored value in the block: exact after a clear, and never narrower than
+  // the block's contents (writes keep them conservative).
+  [[nodiscard]] float& blockMin(std::size_t index) { return min_[index]; }
+  [[nodiscard]] float& blockMax(std::size_t index) { return max_[index]; }
+  [[nodiscard]] float blockMin(std::size_t index) const { return min_[index]; }
+  [[nodiscard]] float blockMax(std::size_t index) const { return max_[index]; }
+  // Uniform: every pixel of the block holds blockMin() (== blockMax()); its values are not filled.
+  [[nodiscard]] bool uniform(std::size_t index) const { return uniform_[index] != 0; }
+  // Fills a uniform block with its value, so that pixels can be written one by one.
+  void materialise(std::size_t index);
+
+  // Stored depth of pixel (x, y) of the frame, inside the window (tests and debugging; slow).
   [[nodiscard]] float at(int x, int y) const;
 
  private:
   int resolution_ = 0;
-  int tilesX_ = 0;
-  int tilesY_ = 0;
+  int bx0_ = 0, by0_ = 0, nx_ = 0, ny_ = 0;
+  int px1_ = -1, py1_ = -1;
   std::vector<float> data_;
   std::vector<float> min_;
   std::vector<float> max_;
   std::vector<std::uint8_t> uniform_;
-  std::vector<std::uint32_t> materialised_;
 };
 
 }  // namespace cdb

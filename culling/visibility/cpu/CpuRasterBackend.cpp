@@ -7,11 +7,14 @@
 #include <tbb/parallel_for.h>
 
 #include "core/Errors.h"
-#include "scenes/MeshMeasures.h"
+#include "culling/visibility/cpu/CpuRasteriser.h"
 
 namespace cdb {
 
-CpuRasterBackend::CpuRasterBackend(const VisibilityOptions& options) { setOptions(options); }
+CpuRasterBackend::CpuRasterBackend(const VisibilityOptions& options) {
+  open_ = freshRun();
+  setOptions(options);
+}
 
 CpuRasterBackend::~CpuRasterBackend() = default;
 
@@ -23,12 +26,22 @@ std::string CpuRasterBackend::renderer() const {
 void CpuRasterBackend::setOptions(const VisibilityOptions& options) {
   flush();  // what was drawn so far keeps the options it was drawn with
   options_ = options;
-  footprints_.forget();
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
   if (!arena_ || threads != threads_) {
     threads_ = std::max(threads, 1);
     arena_ = std::make_unique<tbb::task_arena>(threads_);
   }
+}
+
+void CpuRasterBackend::setEvaluation(const CpuEvaluation& evaluation) {
+  if (evaluation.tileSize < 0 || evaluation.tileSize % CpuDepthBuffer::kBlock != 0)
+    throw InputError("cpu backend tile size " + std::to_string(evaluation.tileSize) +
+                     " is not 0 or a positive multiple of 8 pixels");
+  if (evaluation.demandDriven && (evaluation.tileSize == 0 || evaluation.tileSize > 64))
+    throw InputError("cpu backend tile size " + std::to_string(evaluation.tileSize) +
+                     " is not 8..64 pixels, as a demand-driven evaluation needs");
+  flush();
+  evaluation_ = evaluation;
 }
 
 void CpuRasterBackend::attachScene(const SceneGeometry& scene) {
@@ -43,15 +56,9 @@ void CpuRasterBackend::attachScene(const SceneGeometry& scene) {
         if (i >= m.vertices.size())
           throw InputError("mesh '" + m.name + "' has a triangle index " + std::to_string(i) +
                            " beyond its " + std::to_string(m.vertices.size()) + " vertices");
+  releaseRetained();  // its pending writes drew the old scene's meshes
   scene_ = &scene;
-  footprints_.forget();  // a new scene's meshes may sit where the old one's were
-  meshWinding_.clear();
-  meshBox_.clear();
-  for (const Mesh& m : scene.meshes) {
-    const double volume = isClosedMesh(m) ? signedVolume(m) : 0.0;
-    meshWinding_.push_back(volume > 0 ? 1 : volume < 0 ? -1 : 0);
-    meshBox_.push_back(m.bounds());
-  }
+  meshBounds_ = meshBoundsOf(scene);
   poses_.assign(scene.objectCount(), Eigen::Matrix4d::Identity());
   lastResolution_ = 0;
 }
@@ -62,8 +69,6 @@ void CpuRasterBackend::setPoses(std::span<const Pose> poses) {
     throw RunError("got " + std::to_string(poses.size()) + " poses for a scene of " +
                    std::to_string(objects) + " objects");
   for (std::size_t i = 0; i < poses.size(); ++i) poses_[i] = poses[i].matrix();
-  // A new frame: no write of the last one recurs (and a detector's time is its own).
-  footprints_.forget();
 }
 
 CpuPass CpuRasterBackend::passFor(const DepthPassSetup& setup) const {
@@ -102,11 +107,12 @@ void CpuRasterBackend::beginPass(const ViewSpec& view, DepthUse depth) {
   worldToKey_.topRows<2>() = setup.worldToScreen.topRows<2>();
   worldToKey_.row(2) = std::abs(setup.depthFar - setup.depthNear) * setup.worldToScreen.row(2);
   worldToKey_(2, 3) += sign * setup.depthNear;
+  CpuRecording& recording = open_->recording;
   CpuPass pass = passFor(setup);
   // Its SharedFirst already ran: it goes on in the buffer that pass left.
-  pass.continues = depth == DepthUse::SharedSecond && list_.passes.empty();
-  pass.firstCommand = static_cast<std::uint32_t>(list_.commands.size());
-  list_.passes.push_back(pass);
+  pass.continues = depth == DepthUse::SharedSecond && recording.passes.empty();
+  pass.firstCommand = static_cast<std::uint32_t>(recording.commands.size());
+  recording.passes.push_back(pass);
   inPass_ = true;
   lastDepth_ = depth;
   lastResolution_ = view.resolution;
@@ -143,19 +149,19 @@ void CpuRasterBackend::checkListed(ObjectId object,
 
 CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source source,
                                      ObjectId object) {
-  if (list_.passes.empty()) {
+  CpuRecording& recording = open_->recording;
+  if (recording.passes.empty()) {
     // Draws after a fetch without a new pass go on in the open pass.
     CpuPass pass = passFor(setup_);
     pass.clears = false;
     pass.continues = true;
-    pass.firstCommand = static_cast<std::uint32_t>(list_.commands.size());
-    list_.passes.push_back(pass);
+    pass.firstCommand = static_cast<std::uint32_t>(recording.commands.size());
+    recording.passes.push_back(pass);
   }
-  CpuCommand& c = list_.commands.emplace_back();
+  CpuCommand& c = recording.commands.emplace_back();
   c.role = role;
   c.source = source;
-  c.mesh = &scene_->meshOf(object);
-  c.meshBox = meshBox_[scene_->objects[object].mesh];
+  c.mesh = scene_->objects[object].mesh;
   c.toScreen = worldToKey_ * poses_[object];
   return c;
 }
@@ -164,7 +170,7 @@ std::int8_t CpuRasterBackend::wholeMeshWinding(const MeshRange& range) const {
   const SceneObject& o = scene_->objects[range.object];
   const bool whole = range.firstTriangle == 0 &&
                      range.triangleCount == scene_->meshes[o.mesh].triangleCount();
-  return whole ? meshWinding_[o.mesh] : std::int8_t{0};
+  return whole ? meshBounds_[o.mesh].winding : std::int8_t{0};
 }
 
 QueryIndex CpuRasterBackend::issue(std::uint32_t count) {
@@ -206,12 +212,13 @@ QueryIndex CpuRasterBackend::queryTriangles(ObjectId object,
                                             std::span<const std::uint32_t> triangles) {
   checkListed(object, triangles);
   if (triangles.empty()) return kNoQuery;
+  CpuRecording& recording = open_->recording;
   const auto count = static_cast<std::uint32_t>(triangles.size());
   const QueryIndex q = issue(count);
   CpuCommand& c = record(CpuCommand::Role::Test, CpuCommand::Source::Listed, object);
-  c.first = static_cast<std::uint32_t>(list_.listed.size()), c.count = count, c.query = q;
+  c.first = static_cast<std::uint32_t>(recording.listed.size()), c.count = count, c.query = q;
   c.answerEach = true;
-  list_.listed.insert(list_.listed.end(), triangles.begin(), triangles.end());
+  recording.listed.insert(recording.listed.end(), triangles.begin(), triangles.end());
   ++counters_.draws;
   counters_.trianglesDrawn += count;
   return q;
@@ -220,12 +227,13 @@ QueryIndex CpuRasterBackend::queryTriangles(ObjectId object,
 QueryIndex CpuRasterBackend::queryBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
   checkObject(object);
   if (localBoxes.empty()) return kNoQuery;
+  CpuRecording& recording = open_->recording;
   const auto count = static_cast<std::uint32_t>(localBoxes.size());
   const QueryIndex q = issue(count);
   CpuCommand& c = record(CpuCommand::Role::Test, CpuCommand::Source::Boxes, object);
-  c.first = static_cast<std::uint32_t>(list_.boxes.size()), c.count = count, c.query = q;
+  c.first = static_cast<std::uint32_t>(recording.boxes.size()), c.count = count, c.query = q;
   c.answerEach = true;
-  list_.boxes.insert(list_.boxes.end(), localBoxes.begin(), localBoxes.end());
+  recording.boxes.insert(recording.boxes.end(), localBoxes.begin(), localBoxes.end());
   ++counters_.draws;
   counters_.trianglesDrawn += 12u * count;  // a box is the cube's 12 triangles, as on GL
   return q;
@@ -244,10 +252,11 @@ void CpuRasterBackend::writeRange(const MeshRange& range) {
 void CpuRasterBackend::writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) {
   checkListed(object, triangles);
   if (triangles.empty()) return;
+  CpuRecording& recording = open_->recording;
   CpuCommand& c = record(CpuCommand::Role::Write, CpuCommand::Source::Listed, object);
-  c.first = static_cast<std::uint32_t>(list_.listed.size());
+  c.first = static_cast<std::uint32_t>(recording.listed.size());
   c.count = static_cast<std::uint32_t>(triangles.size());
-  list_.listed.insert(list_.listed.end(), triangles.begin(), triangles.end());
+  recording.listed.insert(recording.listed.end(), triangles.begin(), triangles.end());
   ++counters_.draws;
   counters_.trianglesDrawn += triangles.size();
 }
@@ -259,85 +268,108 @@ void CpuRasterBackend::writeBox(ObjectId object, const OrientedBox& localBox) {
 void CpuRasterBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
   checkObject(object);
   if (localBoxes.empty()) return;
+  CpuRecording& recording = open_->recording;
   CpuCommand& c = record(CpuCommand::Role::Write, CpuCommand::Source::Boxes, object);
-  c.first = static_cast<std::uint32_t>(list_.boxes.size());
+  c.first = static_cast<std::uint32_t>(recording.boxes.size());
   c.count = static_cast<std::uint32_t>(localBoxes.size());
-  list_.boxes.insert(list_.boxes.end(), localBoxes.begin(), localBoxes.end());
+  recording.boxes.insert(recording.boxes.end(), localBoxes.begin(), localBoxes.end());
   ++counters_.draws;
   counters_.trianglesDrawn += 12u * localBoxes.size();
 }
 
-std::unique_ptr<CpuDepthBuffer> CpuRasterBackend::acquireBuffer() {
-  std::lock_guard lock(poolMutex_);
-  if (pool_.empty()) return std::make_unique<CpuDepthBuffer>();
-  auto buffer = std::move(pool_.back());
-  pool_.pop_back();
-  return buffer;
+std::shared_ptr<CpuRun> CpuRasterBackend::freshRun() {
+  std::shared_ptr<CpuRun> run;
+  if (!spareRuns_.empty()) {
+    run = std::move(spareRuns_.back());
+    spareRuns_.pop_back();
+  } else {
+    run = std::make_shared<CpuRun>();
+  }
+  run->recording.clear();
+  return run;
 }
 
-void CpuRasterBackend::releaseBuffer(std::unique_ptr<CpuDepthBuffer> buffer) {
-  if (!buffer) return;
-  std::lock_guard lock(poolMutex_);
-  pool_.push_back(std::move(buffer));
+void CpuRasterBackend::releaseRetained() {
+  for (auto& [run, chain] : retained_.runs)
+    if (run.use_count() == 1) spareRuns_.push_back(std::const_pointer_cast<CpuRun>(run));
+  retained_.runs.clear();
+  retained_.chainId = 0;
 }
 
 void CpuRasterBackend::flush() {
-  if (list_.passes.empty()) return;
-  auto& passes = list_.passes;
-  for (std::size_t i = 0; i < passes.size(); ++i)
-    passes[i].endCommand = i + 1 < passes.size()
-                               ? passes[i + 1].firstCommand
-                               : static_cast<std::uint32_t>(list_.commands.size());
-  // Chains of passes that share a buffer in order: a pass that clears starts one; a SharedSecond
-  // pass (or a pass going on after a fetch) joins the one before. Chains are independent.
-  chainStarts_.clear();
-  for (std::size_t i = 0; i < passes.size(); ++i)
-    if (i == 0 || passes[i].clears) chainStarts_.push_back(i);
-  const std::size_t chains = chainStarts_.size();
-  chainStarts_.push_back(passes.size());
-  chainWork_.assign(chains, RasterWork{});
-  answers_.resize(issued_, 1);
-  RasterWork footprintWork;
-  list_.decideByBounds = savers_.decideByBounds;
-  if (savers_.writeFootprints)
-    footprints_.prepare(list_, *arena_, threads_, footprintWork);
-  else
-    footprints_.skip();
-
-  const bool firstContinues = passes[0].continues;
-  if (firstContinues && !retained_)
+  if (open_->recording.empty()) return;
+  storedTileIndex_ = -1;
+  CpuRun& run = *open_;
+  CpuRecording& recording = run.recording;
+  recording.close();
+  const bool continues = recording.passes[0].continues;
+  if (continues && retained_.runs.empty())
     throw RunError("a pass went on after a fetch without a depth buffer to go on in");
-  auto& buffers = chainBuffers_;
-  buffers.resize(chains);
-  const auto runChain = [&](std::size_t chain) {
-    std::unique_ptr<CpuDepthBuffer>& buffer = buffers[chain];
-    if (chain == 0 && firstContinues) {
-      buffer = std::move(retained_);
-    } else {
-      buffer = acquireBuffer();
-      buffer->resize(passes[chainStarts_[chain]].raster.resolution);
-    }
-    for (std::size_t p = chainStarts_[chain]; p < chainStarts_[chain + 1]; ++p)
-      runPass(*buffer, passes[p], list_, answers_.data(), chainWork_[chain],
-              footprints_.perCommand());
+  const int continuedTileSize =
+      continues ? retained_.runs.front().first->bins.chains[retained_.runs.front().second].tileSize
+                : 0;
+  tbb::task_arena* arena = threads_ > 1 ? arena_.get() : nullptr;
+  binRecording(recording, *scene_, meshBounds_, evaluation_.tileSize, continuedTileSize, arena,
+               run.bins);
+  answers_.resize(issued_, 1);
+
+  // Where each chain's tiles live: a continued chain in the store that holds it, the last chain
+  // (the buffer a later pass may go on in) in the other one, the rest in per-thread scratch.
+  const auto& chains = run.bins.chains;
+  const std::size_t last = chains.size() - 1;
+  std::vector<std::uint64_t> chainId(chains.size());
+  std::vector<int> store(chains.size(), -1);
+  std::vector<float> clearValue(chains.size());
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    const bool continued = c == 0 && continues;
+    chainId[c] = continued ? retained_.chainId : nextChainId_++;
+    clearValue[c] = continued ? retained_.clearValue : chains[c].clearValue;
+    if (continued) store[c] = retained_.store;
+  }
+  if (store[last] < 0) {
+    store[last] = 1 - retained_.store;
+    const std::size_t tiles = static_cast<std::size_t>(chains[last].tilesX) * chains[last].tilesX;
+    if (stores_[store[last]].size() < tiles) stores_[store[last]].resize(tiles);
+  }
+
+  units_.clear();
+  for (std::uint32_t c = 0; c < chains.size(); ++c)
+    for (const std::uint32_t t : chains[c].tilesUsed) units_.emplace_back(c, t);
+  for (CpuTileWork& w : work_) w = {};
+  const CpuAnswers answers(answers_.data());
+  const auto runUnit = [&](std::size_t u) {
+    const auto [c, t] = units_[u];
+    CpuTileState& state = store[c] >= 0 ? stores_[store[c]][t] : scratch_.local();
+    if (store[c] < 0 || state.chain != chainId[c])
+      startTile(state, chains[c], t, clearValue[c], chainId[c]);
+    evaluateTile(state, CpuScene{*scene_, meshBounds_}, run, c, t, evaluation_, answers,
+                 work_.local());
   };
-  if (chains == 1 || threads_ == 1) {
-    for (std::size_t chain = 0; chain < chains; ++chain) runChain(chain);
+  if (arena && units_.size() > 1) {
+    arena->execute(
+        [&] { tbb::parallel_for(std::size_t{0}, units_.size(), runUnit); });
   } else {
-    arena_->execute([&] {
-      tbb::parallel_for(std::size_t{0}, chains, [&](std::size_t chain) { runChain(chain); });
-    });
+    for (std::size_t u = 0; u < units_.size(); ++u) runUnit(u);
   }
-  // The last chain's buffer is where the open pass goes on; the others return to the pool.
-  releaseBuffer(std::move(retained_));
-  retained_ = std::move(buffers[chains - 1]);
-  for (std::size_t chain = 0; chain + 1 < chains; ++chain) releaseBuffer(std::move(buffers[chain]));
-  chainWork_.push_back(footprintWork);
-  for (const RasterWork& w : chainWork_) {
-    counters_.pixelsTested += w.pixelsTested;
-    counters_.pixelsWritten += w.pixelsWritten;
+  CpuTileWork total;
+  for (const CpuTileWork& w : work_) total += w;
+  counters_.pixelsTested += total.raster.pixelsTested;
+  counters_.pixelsWritten += total.raster.pixelsWritten;
+  counters_.tileTests += total.tests;
+  counters_.tileTestsByBounds += total.testsByBounds;
+  counters_.tileTestsSkipped += total.testsSkipped;
+  counters_.tileWrites += total.writes;
+  counters_.tileWritesRasterised += total.writesRasterised;
+
+  // The last chain's buffer is where a pass may go on; the recording stays while it does.
+  if (!(last == 0 && continues)) {
+    releaseRetained();
+    retained_.chainId = chainId[last];
+    retained_.clearValue = clearValue[last];
+    retained_.store = store[last];
   }
-  list_.clear();
+  retained_.runs.emplace_back(open_, static_cast<std::uint32_t>(last));
+  open_ = freshRun();
 }
 
 void CpuRasterBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
@@ -349,17 +381,28 @@ void CpuRasterBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
   issued_ = 0;
 }
 
-void CpuRasterBackend::setWorkSavers(const WorkSavers& savers) {
-  flush();
-  savers_ = savers;
-}
-
 float CpuRasterBackend::storedDepth(int x, int y) {
   flush();
-  if (!retained_ || x < 0 || y < 0 || x >= retained_->resolution() || y >= retained_->resolution())
+  if (retained_.runs.empty())
     throw RunError("no depth buffer holds pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                    ")");
-  return retained_->at(x, y);
+  const auto& [firstRun, firstChain] = retained_.runs.front();
+  const CpuChain& chain = firstRun->bins.chains[firstChain];
+  if (x < 0 || y < 0 || x >= chain.resolution || y >= chain.resolution)
+    throw RunError("no depth buffer holds pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                   ")");
+  const std::int64_t tile =
+      static_cast<std::int64_t>(y / chain.tileSize) * chain.tilesX + x / chain.tileSize;
+  if (tile != storedTileIndex_) {
+    // Every write of the buffer drawn again, in order, into a fresh tile.
+    startTile(storedTile_, chain, static_cast<std::uint32_t>(tile), retained_.clearValue, 0);
+    CpuTileWork ignored;
+    for (const auto& [run, c] : retained_.runs)
+      rasteriseWrites(storedTile_, CpuScene{*scene_, meshBounds_}, *run,
+                      run->bins.chains[c].itemsOf(static_cast<std::uint32_t>(tile)), ignored);
+    storedTileIndex_ = tile;
+  }
+  return storedTile_.depth.at(x, y);
 }
 
 }  // namespace cdb

@@ -1,22 +1,28 @@
 #pragma once
 // The visibility backend on a CPU depth rasteriser made for CULLIDE's queries: exact and
 // conservative by construction (every pixel whose square a triangle meets; its farthest depth
-// there for a test, its nearest for a write; see CpuTriangleSetup), with no GL at all. Draws are
-// recorded and run at fetchResults, independent passes concurrently on oneTBB; answers do not
-// depend on the thread count.
+// there for a test, its nearest for a write; see CpuTriangleSetup), with no GL at all.
+//
+// Draws are recorded (CpuRecording) and run at fetchResults, when every answer is due, as three
+// steps, one file each: binning (CpuBins: every command cut into chunks of triangles or boxes
+// with screen bounds, listed per screen tile), the on-demand evaluation of a tile
+// (CpuTileEvaluation: a write is rasterised only where a later test reads it), and the pixel loops
+// (CpuRasteriser). Tiles are independent given their lists, so they run on oneTBB threads; answers
+// and the depths tests read depend neither on the thread count nor on the tile size.
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_arena.h>
 
 #include "culling/visibility/DepthPassSetup.h"
 #include "culling/visibility/VisibilityBackend.h"
-#include "culling/visibility/cpu/CpuDepthBuffer.h"
-#include "culling/visibility/cpu/CpuPassCommands.h"
-#include "culling/visibility/cpu/CpuWriteFootprints.h"
+#include "culling/visibility/cpu/CpuBins.h"
+#include "culling/visibility/cpu/CpuMeshBounds.h"
+#include "culling/visibility/cpu/CpuTileEvaluation.h"
 
 namespace cdb {
 
@@ -57,20 +63,13 @@ class CpuRasterBackend final : public VisibilityBackend {
   void resetCounters() override { counters_ = {}; }
 
   [[nodiscard]] int threads() const { return threads_; }
-  // What the backend does to save work, each on by default: recurring writes drawn from
-  // footprints (CpuWriteFootprints), pieces decided by the tiles under their screen bounds
-  // (CpuCommandList::decideByBounds). Answers and depths are the same either way; for tests and
-  // for measuring what each saves.
-  struct WorkSavers {
-    bool writeFootprints = true;
-    bool decideByBounds = true;
-  };
-  void setWorkSavers(const WorkSavers& savers);
-  // Footprints the last run recording drew from, and how many of them it rasterised.
-  [[nodiscard]] std::size_t lastFootprintsUsed() const { return footprints_.used(); }
-  [[nodiscard]] std::size_t lastFootprintsBuilt() const { return footprints_.built(); }
-  // The stored depth at pixel (x, y) of the buffer the last recorded pass ran on (runs what is
-  // recorded first); for tests.
+  // How recordings are evaluated (CpuEvaluation; for tests and measurements): the answers and
+  // the depths tests read are the same for every setting. Throws InputError on a tile size that is
+  // not 0 or a positive multiple of 8.
+  void setEvaluation(const CpuEvaluation& evaluation);
+  [[nodiscard]] const CpuEvaluation& evaluation() const { return evaluation_; }
+  // The depth drawing every write of the buffer the last recorded pass runs on leaves at pixel
+  // (x, y) (writes still pending included); for tests.
   [[nodiscard]] float storedDepth(int x, int y);
 
  private:
@@ -83,22 +82,20 @@ class CpuRasterBackend final : public VisibilityBackend {
   [[nodiscard]] std::int8_t wholeMeshWinding(const MeshRange& range) const;
   // Numbers `count` answers (1 until a test says otherwise).
   QueryIndex issue(std::uint32_t count);
-  // Runs every recorded pass; their answers join those awaiting the next fetch.
+  // Runs the open recording; its answers join those awaiting the next fetch.
   void flush();
   [[nodiscard]] CpuPass passFor(const DepthPassSetup& setup) const;
-  std::unique_ptr<CpuDepthBuffer> acquireBuffer();
-  void releaseBuffer(std::unique_ptr<CpuDepthBuffer> buffer);
+  [[nodiscard]] std::shared_ptr<CpuRun> freshRun();
+  void releaseRetained();
 
   VisibilityOptions options_;
   int threads_ = 1;
   std::unique_ptr<tbb::task_arena> arena_;
   VisibilityCounters counters_;
+  CpuEvaluation evaluation_;
 
   const SceneGeometry* scene_ = nullptr;
-  // Per mesh of the scene: CpuCommand::winding for a draw of all of it.
-  std::vector<std::int8_t> meshWinding_;
-  // Per mesh of the scene: its box in its own frame.
-  std::vector<Eigen::AlignedBox3d> meshBox_;
+  std::vector<CpuMeshBounds> meshBounds_;
   std::vector<Eigen::Matrix4d> poses_;
 
   // The open pass (kept across fetches: draws may go on in it).
@@ -108,21 +105,28 @@ class CpuRasterBackend final : public VisibilityBackend {
   DepthUse lastDepth_ = DepthUse::Fresh;
   int lastResolution_ = 0;
 
-  CpuCommandList list_;
+  std::shared_ptr<CpuRun> open_;       // what is being recorded
   std::uint32_t issued_ = 0;           // answers numbered since the last fetch
   std::vector<std::uint8_t> answers_;  // those already run
 
-  // The buffer the last run pass left, which a continuing pass goes on in; and idle buffers.
-  std::unique_ptr<CpuDepthBuffer> retained_;
-  std::mutex poolMutex_;
-  std::vector<std::unique_ptr<CpuDepthBuffer>> pool_;
-  // Scratch of flush(), kept so that a frame allocates nothing.
-  std::vector<std::size_t> chainStarts_;
-  std::vector<RasterWork> chainWork_;
-  std::vector<std::unique_ptr<CpuDepthBuffer>> chainBuffers_;
-  // Writes drawn more than once in a recording are rasterised once (see CpuWriteFootprints).
-  CpuWriteFootprints footprints_;
-  WorkSavers savers_;
+  // The buffer the last run recording left (its last chain), where a pass may go on: the runs
+  // whose items it holds (with the chain's index in each) and its tiles' states.
+  struct Retained {
+    std::vector<std::pair<std::shared_ptr<const CpuRun>, std::uint32_t>> runs;
+    std::uint64_t chainId = 0;
+    float clearValue = 1.f;
+    int store = 0;  // which of stores_ holds its tiles
+  };
+  Retained retained_;
+  std::uint64_t nextChainId_ = 1;
+  std::vector<CpuTileState> stores_[2];
+  tbb::enumerable_thread_specific<CpuTileState> scratch_;
+  tbb::enumerable_thread_specific<CpuTileWork> work_;
+  std::vector<std::shared_ptr<CpuRun>> spareRuns_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> units_;  // (chain, tile) of a flush
+  // storedDepth's replay of one tile, valid until the next flush.
+  CpuTileState storedTile_;
+  std::int64_t storedTileIndex_ = -1;
 };
 
 }  // namespace cdb

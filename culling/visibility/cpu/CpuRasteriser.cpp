@@ -13,39 +13,63 @@ namespace cdb {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Eight lanes where the target has them (a tile row in one step), four on SSE4 (two steps).
-using D = hn::CappedTag<float, CpuDepthBuffer::kTile>;
-constexpr int kTile = CpuDepthBuffer::kTile;
+// Eight lanes where the target has them (a block row in one step), four on SSE4 (two steps).
+using D = hn::CappedTag<float, CpuDepthBuffer::kBlock>;
+constexpr int kBlock = CpuDepthBuffer::kBlock;
+constexpr bool kTest = true;
 
-// Stored keys of a tile: its physical bounds in the pass' key order.
-struct TileKeys {
+// Stored keys of a block: its physical bounds in the pass' key order.
+struct BlockKeys {
   float nearest;
   float farthest;
 };
-inline TileKeys tileKeys(CpuDepthBuffer& buffer, std::size_t index, float sign) {
-  const float lo = buffer.tileMin(index), hi = buffer.tileMax(index);
-  return sign > 0 ? TileKeys{lo, hi} : TileKeys{-hi, -lo};
+inline BlockKeys blockKeys(const CpuDepthBuffer& buffer, std::size_t index, float sign) {
+  const float lo = buffer.blockMin(index), hi = buffer.blockMax(index);
+  return sign > 0 ? BlockKeys{lo, hi} : BlockKeys{-hi, -lo};
 }
 
-// How the triangle covers the pixels of its box inside tile (tx, ty), from the range of each
+// Whether a block's stored keys leave nothing to do: every key a test can have is nearer than all
+// of them (visible there), or every key a write can have is at or behind all of them (no change).
+template <bool kIsTest>
+inline bool blockDecides(const TriangleRaster& r, const BlockKeys& stored) {
+  return kIsTest ? r.zHi < stored.nearest : r.zLo >= stored.farthest;
+}
+
+// Whether block `index` of the window is in `mask` (masks cover windows of up to 64 blocks; a
+// larger window is drawn whole, with kAllBlocks).
+inline bool inMask(BlockMask mask, std::size_t index) {
+  return index >= 64 || ((mask >> index) & 1u) != 0;
+}
+
+// The blocks of the triangle's pixel box inside the buffer's window (inclusive; empty when the
+// box misses it).
+struct BlockRange {
+  int x0, y0, x1, y1;
+};
+inline BlockRange blocksInWindow(const CpuDepthBuffer& buffer, const TriangleRaster& r) {
+  return {std::max(r.x0 / kBlock, buffer.blockX0()), std::max(r.y0 / kBlock, buffer.blockY0()),
+          std::min(r.x1 / kBlock, buffer.blockX1()), std::min(r.y1 / kBlock, buffer.blockY1())};
+}
+
+// How the triangle covers the pixels of its box inside block (bx, by), from the range of each
 // edge function over them, evaluated in float like the pixels: None when some edge's range misses
 // [lo, hi] (the set-up's tolerance bounds that error too, so no covered pixel is skipped); Whole
 // when every edge's range lies within it (where that and a pixel's own evaluation round
-// differently at the border, the pixel is taken, which only adds pixels a tolerance's width from
-// the triangle); Partial otherwise.
-enum class TileCover { None, Partial, Whole };
-inline TileCover tileCover(const TriangleRaster& r, int tx, int ty) {
-  const float dxA = static_cast<float>(std::max(r.x0, tx * kTile) - r.x0);
-  const float dxB = static_cast<float>(std::min(r.x1, tx * kTile + kTile - 1) - r.x0);
-  const float dyA = static_cast<float>(std::max(r.y0, ty * kTile) - r.y0);
-  const float dyB = static_cast<float>(std::min(r.y1, ty * kTile + kTile - 1) - r.y0);
-  TileCover cover = TileCover::Whole;
+// differently at the border, a write takes the pixel, which only adds pixels a tolerance's width
+// from the triangle); Partial otherwise.
+enum class BlockCover { None, Partial, Whole };
+inline BlockCover blockCover(const TriangleRaster& r, int bx, int by) {
+  const float dxA = static_cast<float>(std::max(r.x0, bx * kBlock) - r.x0);
+  const float dxB = static_cast<float>(std::min(r.x1, bx * kBlock + kBlock - 1) - r.x0);
+  const float dyA = static_cast<float>(std::max(r.y0, by * kBlock) - r.y0);
+  const float dyB = static_cast<float>(std::min(r.y1, by * kBlock + kBlock - 1) - r.y0);
+  BlockCover cover = BlockCover::Whole;
   for (int e = 0; e < 3; ++e) {
-    const float ax = r.a[e] * dxA, bx = r.a[e] * dxB, ay = r.b[e] * dyA, by = r.b[e] * dyB;
-    const float fMin = r.c[e] + std::min(ax, bx) + std::min(ay, by);
-    const float fMax = r.c[e] + std::max(ax, bx) + std::max(ay, by);
-    if (fMax < r.lo[e] || fMin > r.hi[e]) return TileCover::None;
-    if (!(fMin >= r.lo[e] && fMax <= r.hi[e])) cover = TileCover::Partial;
+    const float ax = r.a[e] * dxA, bx2 = r.a[e] * dxB, ay = r.b[e] * dyA, by2 = r.b[e] * dyB;
+    const float fMin = r.c[e] + std::min(ax, bx2) + std::min(ay, by2);
+    const float fMax = r.c[e] + std::max(ax, bx2) + std::max(ay, by2);
+    if (fMax < r.lo[e] || fMin > r.hi[e]) return BlockCover::None;
+    if (!(fMin >= r.lo[e] && fMax <= r.hi[e])) cover = BlockCover::Partial;
   }
   return cover;
 }
@@ -68,22 +92,22 @@ HWY_INLINE Lanes lanesOf(const TriangleRaster& r) {
   return l;
 }
 
-// The part of the triangle's pixel box inside tile (tx, ty): its columns (also as dx, for the
-// lane masks) and its rows. Tests and writes visit the same pixels.
-struct TileSpan {
+// The part of the triangle's pixel box inside block (bx, by): its columns (also as dx, for the
+// lane masks) and its rows.
+struct BlockSpan {
   int cx0, cx1, ry0, ry1;
   hn::Vec<D> boxLo, boxHi;
-  // Whether the step of `n` lanes from tile column `lx` holds a column of the span.
-  [[nodiscard]] bool holdsStep(int tx, int lx, int n) const {
-    return tx * kTile + lx <= cx1 && tx * kTile + lx + n - 1 >= cx0;
+  // Whether the step of `n` lanes from block column `lx` holds a column of the span.
+  [[nodiscard]] bool holdsStep(int bx, int lx, int n) const {
+    return bx * kBlock + lx <= cx1 && bx * kBlock + lx + n - 1 >= cx0;
   }
   [[nodiscard]] int columns() const { return cx1 - cx0 + 1; }
 };
-HWY_INLINE TileSpan spanInTile(const TriangleRaster& r, int tx, int ty) {
+HWY_INLINE BlockSpan spanInBlock(const TriangleRaster& r, int bx, int by) {
   const D d;
-  TileSpan s;
-  s.cx0 = std::max(r.x0, tx * kTile), s.cx1 = std::min(r.x1, tx * kTile + kTile - 1);
-  s.ry0 = std::max(r.y0, ty * kTile), s.ry1 = std::min(r.y1, ty * kTile + kTile - 1);
+  BlockSpan s;
+  s.cx0 = std::max(r.x0, bx * kBlock), s.cx1 = std::min(r.x1, bx * kBlock + kBlock - 1);
+  s.ry0 = std::max(r.y0, by * kBlock), s.ry1 = std::min(r.y1, by * kBlock + kBlock - 1);
   s.boxLo = hn::Set(d, static_cast<float>(s.cx0 - r.x0));
   s.boxHi = hn::Set(d, static_cast<float>(s.cx1 - r.x0));
   return s;
@@ -102,10 +126,15 @@ HWY_INLINE void startRow(const Lanes& l, int y, const TriangleRaster& r, RowSetu
   row.zBase = hn::MulAdd(l.zb, dy, l.zc);
 }
 
-// Covered lanes of one step, given the lanes' dx and the box's columns as dx.
+// The lanes of one step inside the box's columns.
+HWY_INLINE hn::Mask<D> inBox(hn::Vec<D> dx, const BlockSpan& span) {
+  return hn::And(hn::Ge(dx, span.boxLo), hn::Le(dx, span.boxHi));
+}
+
+// Covered lanes of one step, given the lanes' dx.
 HWY_INLINE hn::Mask<D> covered(const Lanes& l, const RowSetup& row, hn::Vec<D> dx,
-                               hn::Vec<D> boxLo, hn::Vec<D> boxHi) {
-  auto m = hn::And(hn::Ge(dx, boxLo), hn::Le(dx, boxHi));
+                               const BlockSpan& span) {
+  auto m = inBox(dx, span);
   for (int e = 0; e < 3; ++e) {
     const auto f = hn::MulAdd(l.a[e], dx, row.base[e]);
     m = hn::And(m, hn::And(hn::Ge(f, l.lo[e]), hn::Le(f, l.hi[e])));
@@ -113,97 +142,84 @@ HWY_INLINE hn::Mask<D> covered(const Lanes& l, const RowSetup& row, hn::Vec<D> d
   return m;
 }
 
-// The lanes of one step inside the box's columns (a tile the triangle covers whole).
-HWY_INLINE hn::Mask<D> inBox(hn::Vec<D> dx, hn::Vec<D> boxLo, hn::Vec<D> boxHi) {
-  return hn::And(hn::Ge(dx, boxLo), hn::Le(dx, boxHi));
-}
-
 HWY_INLINE hn::Vec<D> keyAt(const Lanes& l, const RowSetup& row, hn::Vec<D> dx) {
   return hn::Min(hn::Max(hn::MulAdd(l.za, dx, row.zBase), l.zLo), l.zHi);
 }
 
-// The SIMD steps of a triangle's span in one tile, row by row: visit(y, lx, dx, row) for each step
-// that holds pixels of the span, until it returns true (then true). `pixels` grows by each row's
-// pixels.
+// The SIMD steps of a triangle's span in one block, row by row: visit(y, lx, dx, row) for each
+// step that holds pixels of the span, until it returns true (then true). `pixels` grows by each
+// row's pixels.
 template <class Visit>
-HWY_INLINE bool forEachStep(const Lanes& l, const TriangleRaster& r, const TileSpan& span, int tx,
+HWY_INLINE bool forEachStep(const Lanes& l, const TriangleRaster& r, const BlockSpan& span, int bx,
                             std::uint64_t& pixels, const Visit& visit) {
   const D d;
   const int n = static_cast<int>(hn::Lanes(d));
+  // Each step's dx (lane i: its column - x0): Iota's lanes, made once (Iota builds them lane by
+  // lane), plus the step's first, both exact in float.
+  const auto lane = hn::Iota(d, 0.f);
+  hn::Vec<D> dx[kBlock];
+  bool holds[kBlock];
+  for (int lx = 0; lx < kBlock; lx += n) {
+    holds[lx] = span.holdsStep(bx, lx, n);
+    dx[lx] = hn::Add(hn::Set(d, static_cast<float>(bx * kBlock + lx - r.x0)), lane);
+  }
   RowSetup row;
   for (int y = span.ry0; y <= span.ry1; ++y) {
     startRow(l, y, r, row);
     pixels += static_cast<std::uint64_t>(span.columns());
-    for (int lx = 0; lx < kTile; lx += n) {
-      if (!span.holdsStep(tx, lx, n)) continue;
-      if (visit(y, lx, hn::Iota(d, static_cast<float>(tx * kTile + lx - r.x0)), row)) return true;
-    }
+    for (int lx = 0; lx < kBlock; lx += n)
+      if (holds[lx] && visit(y, lx, dx[lx], row)) return true;
   }
   return false;
 }
 
-// True when some covered sample is at or behind the stored depth.
-bool testOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-             RasterWork& work) {
-  const D d;
-  const int tx0 = r.x0 / kTile, tx1 = r.x1 / kTile, ty0 = r.y0 / kTile, ty1 = r.y1 / kTile;
-  const bool oneTile = tx0 == tx1 && ty0 == ty1;
-  const auto sign = hn::Set(d, pass.sign);
-  const Lanes l = lanesOf(r);
-  for (int ty = ty0; ty <= ty1; ++ty) {
-    for (int tx = tx0; tx <= tx1; ++tx) {
-      const std::size_t index = buffer.tileIndex(tx, ty);
-      const TileKeys stored = tileKeys(buffer, index, pass.sign);
-      // Every sample key is at most zHi: nearer than all the tile holds means visible here.
-      if (r.zHi < stored.nearest) continue;
-      if (!oneTile && tileCover(r, tx, ty) == TileCover::None) continue;
-      // Every sample key is at least zLo: at or behind all the tile holds, so the first covered
-      // pixel is occluded without reading depths.
-      const bool allBehind = r.zLo >= stored.farthest;
-      const bool uniform = buffer.uniform(index);
-      const float* values = buffer.tile(index);
-      const TileSpan span = spanInTile(r, tx, ty);
-      const auto occluded = [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
-        const auto m = covered(l, row, dx, span.boxLo, span.boxHi);
-        if (allBehind) return !hn::AllFalse(d, m);
-        const auto key = keyAt(l, row, dx);
-        const auto storedKey = uniform
-                                   ? hn::Set(d, stored.nearest)
-                                   : hn::Mul(hn::LoadU(d, values + (y % kTile) * kTile + lx), sign);
-        return !hn::AllFalse(d, hn::And(m, hn::Ge(key, storedKey)));
-      };
-      if (forEachStep(l, r, span, tx, work.pixelsTested, occluded)) return true;
-    }
-  }
-  return false;
-}
-
-// Exact bounds of a tile from its 64 values.
+// Exact bounds of a block from its 64 values.
 HWY_INLINE void refreshBounds(CpuDepthBuffer& buffer, std::size_t index) {
   const D d;
   const int n = static_cast<int>(hn::Lanes(d));
-  const float* values = buffer.tile(index);
+  const float* values = buffer.block(index);
   auto lo = hn::LoadU(d, values), hi = lo;
-  for (int i = n; i < CpuDepthBuffer::kTilePixels; i += n) {
+  for (int i = n; i < CpuDepthBuffer::kBlockPixels; i += n) {
     const auto v = hn::LoadU(d, values + i);
     lo = hn::Min(lo, v), hi = hn::Max(hi, v);
   }
-  buffer.tileMin(index) = hn::GetLane(hn::MinOfLanes(d, lo));
-  buffer.tileMax(index) = hn::GetLane(hn::MaxOfLanes(d, hi));
+  buffer.blockMin(index) = hn::GetLane(hn::MinOfLanes(d, lo));
+  buffer.blockMax(index) = hn::GetLane(hn::MaxOfLanes(d, hi));
 }
 
-// The pixels of the triangle's box in one tile; kWhole: the triangle covers all of them, so
-// the edge functions are not evaluated. True when a stored value changed.
+// A test of the span in one block: true at the first covered sample at or behind the stored key.
+HWY_INLINE bool testBlock(const CpuDepthBuffer& buffer, std::size_t index, const BlockKeys& stored,
+                          const Lanes& l, const TriangleRaster& r, const BlockSpan& span, int bx,
+                          hn::Vec<D> sign, RasterWork& work) {
+  const D d;
+  // Every sample key is at least zLo: at or behind all the block holds, so the first covered
+  // pixel is occluded without reading depths.
+  const bool allBehind = r.zLo >= stored.farthest;
+  const bool uniform = buffer.uniform(index);
+  const float* values = buffer.block(index);
+  return forEachStep(l, r, span, bx, work.pixelsTested,
+                     [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
+                       const auto m = covered(l, row, dx, span);
+                       if (allBehind) return !hn::AllFalse(d, m);
+                       const auto key = keyAt(l, row, dx);
+                       const auto storedKey =
+                           uniform ? hn::Set(d, stored.nearest)
+                                   : hn::Mul(hn::LoadU(d, values + (y % kBlock) * kBlock + lx), sign);
+                       return !hn::AllFalse(d, hn::And(m, hn::Ge(key, storedKey)));
+                     });
+}
+
+// A write of the span in one block; kWhole: the triangle covers the whole box there, so the edge
+// functions are not evaluated. True when a stored value changed.
 template <bool kWhole>
-HWY_INLINE bool writeTile(float* values, const Lanes& l, const TriangleRaster& r,
-                          const TileSpan& span, int tx, hn::Vec<D> sign, RasterWork& work) {
+HWY_INLINE bool writeBlock(float* values, const Lanes& l, const TriangleRaster& r,
+                           const BlockSpan& span, int bx, hn::Vec<D> sign, RasterWork& work) {
   const D d;
   bool changed = false;
-  forEachStep(l, r, span, tx, work.pixelsWritten,
+  forEachStep(l, r, span, bx, work.pixelsWritten,
               [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
-                const auto m = kWhole ? inBox(dx, span.boxLo, span.boxHi)
-                                      : covered(l, row, dx, span.boxLo, span.boxHi);
-                float* at = values + (y % kTile) * kTile + lx;
+                const auto m = kWhole ? inBox(dx, span) : covered(l, row, dx, span);
+                float* at = values + (y % kBlock) * kBlock + lx;
                 const auto storedKey = hn::Mul(hn::LoadU(d, at), sign);
                 const auto key = keyAt(l, row, dx);
                 const auto nearer = hn::And(m, hn::Lt(key, storedKey));
@@ -215,104 +231,180 @@ HWY_INLINE bool writeTile(float* values, const Lanes& l, const TriangleRaster& r
   return changed;
 }
 
-void writeOne(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-              RasterWork& work) {
+// The one traversal of a triangle's blocks inside the window, for tests and writes alike: blocks
+// whose bounds decide it are skipped, blocks it misses are skipped, the rest are visited. A test
+// returns true at its first occluded sample.
+template <bool kIsTest>
+bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
+                BlockMask mask, RasterWork& work) {
   const D d;
-  const int tx0 = r.x0 / kTile, tx1 = r.x1 / kTile, ty0 = r.y0 / kTile, ty1 = r.y1 / kTile;
-  const bool oneTile = tx0 == tx1 && ty0 == ty1;
+  const bool oneBlock = r.x0 / kBlock == r.x1 / kBlock && r.y0 / kBlock == r.y1 / kBlock;
   const auto sign = hn::Set(d, pass.sign);
   const Lanes l = lanesOf(r);
-  for (int ty = ty0; ty <= ty1; ++ty) {
-    for (int tx = tx0; tx <= tx1; ++tx) {
-      const std::size_t index = buffer.tileIndex(tx, ty);
-      // Every written key is at least zLo: nothing in the tile is farther, nothing changes.
-      if (r.zLo >= tileKeys(buffer, index, pass.sign).farthest) continue;
-      const TileCover cover = tileCover(r, tx, ty);
-      if (!oneTile && cover == TileCover::None) continue;
-      buffer.materialise(index);
-      float* values = buffer.tile(index);
-      const TileSpan span = spanInTile(r, tx, ty);
-      const bool changed = cover == TileCover::Whole
-                               ? writeTile<true>(values, l, r, span, tx, sign, work)
-                               : writeTile<false>(values, l, r, span, tx, sign, work);
-      // Exact bounds again (a write only lowers keys, but the farthest may drop too, which lets
-      // later tests accept the tile whole).
-      if (changed) refreshBounds(buffer, index);
+  const BlockRange blocks = blocksInWindow(buffer, r);
+  for (int by = blocks.y0; by <= blocks.y1; ++by) {
+    for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
+      const std::size_t index = buffer.blockIndex(bx, by);
+      if (!inMask(mask, index)) continue;
+      const BlockKeys stored = blockKeys(buffer, index, pass.sign);
+      if (blockDecides<kIsTest>(r, stored)) continue;
+      // A test of a triangle inside one block needs no cover: its pixels are all there is.
+      const BlockCover cover =
+          kIsTest && oneBlock ? BlockCover::Partial : blockCover(r, bx, by);
+      if (!oneBlock && cover == BlockCover::None) continue;
+      const BlockSpan span = spanInBlock(r, bx, by);
+      if constexpr (kIsTest) {
+        if (testBlock(buffer, index, stored, l, r, span, bx, sign, work)) return true;
+      } else {
+        buffer.materialise(index);
+        float* values = buffer.block(index);
+        const bool changed = cover == BlockCover::Whole
+                                 ? writeBlock<true>(values, l, r, span, bx, sign, work)
+                                 : writeBlock<false>(values, l, r, span, bx, sign, work);
+        // Exact bounds again (a write only lowers keys, but the farthest may drop too, which
+        // lets later tests accept the block whole).
+        if (changed) refreshBounds(buffer, index);
+      }
     }
   }
+  return false;
 }
 
-// A small triangle (smallBox): every pixel of its box, at the key bound of step 1.
-bool testSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-               RasterWork& work) {
-  for (int y = r.y0; y <= r.y1; ++y)
-    for (int x = r.x0; x <= r.x1; ++x) {
-      const std::size_t index = buffer.tileIndex(x / kTile, y / kTile);
-      const TileKeys stored = tileKeys(buffer, index, pass.sign);
-      if (r.zHi < stored.nearest) continue;
-      ++work.pixelsTested;
-      if (buffer.uniform(index) || r.zLo >= stored.farthest) return true;
-      const float key = pass.sign * buffer.tile(index)[(y % kTile) * kTile + x % kTile];
-      if (r.zHi >= key) return true;
+// A small triangle (smallBox): every pixel of its box inside the window, at the key bound of
+// step 1 (zHi for a test, zLo for a write).
+template <bool kIsTest>
+bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
+               BlockMask mask, RasterWork& work) {
+  const int x0 = std::max(r.x0, buffer.pixelX0()), x1 = std::min(r.x1, buffer.pixelX1());
+  const int y0 = std::max(r.y0, buffer.pixelY0()), y1 = std::min(r.y1, buffer.pixelY1());
+  const float value = pass.sign * r.zLo;
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const std::size_t index = buffer.blockIndex(x / kBlock, y / kBlock);
+      if (!inMask(mask, index)) continue;
+      const BlockKeys stored = blockKeys(buffer, index, pass.sign);
+      if (blockDecides<kIsTest>(r, stored)) continue;
+      if constexpr (kIsTest) {
+        ++work.pixelsTested;
+        if (buffer.uniform(index) || r.zLo >= stored.farthest) return true;
+        const float key = pass.sign * buffer.block(index)[(y % kBlock) * kBlock + x % kBlock];
+        if (r.zHi >= key) return true;
+      } else {
+        ++work.pixelsWritten;
+        buffer.materialise(index);
+        float& at = buffer.block(index)[(y % kBlock) * kBlock + x % kBlock];
+        if (!(r.zLo < pass.sign * at)) continue;
+        const float old = at;
+        at = value;
+        // The value only moves toward the near bound; the far bound can only move when the pixel
+        // held it.
+        if (pass.sign > 0) {
+          buffer.blockMin(index) = std::min(buffer.blockMin(index), value);
+          if (old == buffer.blockMax(index)) refreshBounds(buffer, index);
+        } else {
+          buffer.blockMax(index) = std::max(buffer.blockMax(index), value);
+          if (old == buffer.blockMin(index)) refreshBounds(buffer, index);
+        }
+      }
     }
   return false;
 }
 
-void writeSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-                RasterWork& work) {
-  const float value = pass.sign * r.zLo;
-  for (int y = r.y0; y <= r.y1; ++y)
-    for (int x = r.x0; x <= r.x1; ++x) {
-      const std::size_t index = buffer.tileIndex(x / kTile, y / kTile);
-      if (r.zLo >= tileKeys(buffer, index, pass.sign).farthest) continue;
-      ++work.pixelsWritten;
-      buffer.materialise(index);
-      float& at = buffer.tile(index)[(y % kTile) * kTile + x % kTile];
-      if (!(r.zLo < pass.sign * at)) continue;
-      const float old = at;
-      at = value;
-      // The value only moves toward the near bound; the far bound can only move when the pixel
-      // held it.
-      if (pass.sign > 0) {
-        buffer.tileMin(index) = std::min(buffer.tileMin(index), value);
-        if (old == buffer.tileMax(index)) refreshBounds(buffer, index);
-      } else {
-        buffer.tileMax(index) = std::max(buffer.tileMax(index), value);
-        if (old == buffer.tileMin(index)) refreshBounds(buffer, index);
-      }
-    }
-}
-
-// Step 1 of the set-up was enough: every key the test can have is nearer than everything stored
-// under its box (visible), or every key a write can have is at or behind it (no change).
-bool decidedByTiles(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-                    RasterRole role) {
-  const int tx0 = r.x0 / kTile, tx1 = r.x1 / kTile, ty0 = r.y0 / kTile, ty1 = r.y1 / kTile;
-  for (int ty = ty0; ty <= ty1; ++ty)
-    for (int tx = tx0; tx <= tx1; ++tx) {
-      const TileKeys stored = tileKeys(buffer, buffer.tileIndex(tx, ty), pass.sign);
-      if (role == RasterRole::Test ? r.zHi >= stored.nearest : r.zLo < stored.farthest)
+// Step 1 of the set-up was enough: the window's blocks under the box decide the piece.
+template <bool kIsTest>
+bool decidedByBlocks(const CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
+                     BlockMask mask) {
+  const BlockRange blocks = blocksInWindow(buffer, r);
+  for (int by = blocks.y0; by <= blocks.y1; ++by)
+    for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
+      const std::size_t index = buffer.blockIndex(bx, by);
+      if (inMask(mask, index) && !blockDecides<kIsTest>(r, blockKeys(buffer, index, pass.sign)))
         return false;
     }
   return true;
 }
 
-template <class Piece>
-HWY_INLINE bool testTriangle(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
-                             RasterWork& work) {
+// One piece (a triangle, or a quad) tested or written: true when a test finds an occluded sample.
+template <bool kIsTest, class Piece>
+HWY_INLINE bool drawPiece(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
+                          RasterWork& work) {
+  constexpr RasterRole role = kIsTest ? RasterRole::Test : RasterRole::Write;
   TriangleRaster r;
-  if (!setupBounds(t, pass, RasterRole::Test, r)) return false;
-  if (smallBox(pass, r)) return testSmall(buffer, pass, r, work);
-  if (decidedByTiles(buffer, pass, r, RasterRole::Test)) return false;
-  setupCoverage(t, pass, RasterRole::Test, r);
-  return testOne(buffer, pass, r, work);
+  if (!setupBounds(t, pass, role, r)) return false;
+  if (smallBox(pass, r)) return drawSmall<kIsTest>(buffer, pass, r, kAllBlocks, work);
+  if (decidedByBlocks<kIsTest>(buffer, pass, r, kAllBlocks)) return false;
+  setupCoverage(t, pass, role, r);
+  return drawBlocks<kIsTest>(buffer, pass, r, kAllBlocks, work);
+}
+
+// Pieces prepared to be written later, block by block: those with a pixel in the window.
+template <class Piece>
+std::size_t prepare(const CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
+                    std::size_t count, PreparedWrite<Piece>* out) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    PreparedWrite<Piece>& w = out[n];
+    if (!setupBounds(pieces[i], pass, RasterRole::Write, w.raster)) continue;
+    const BlockRange blocks = blocksInWindow(buffer, w.raster);
+    if (blocks.x0 > blocks.x1 || blocks.y0 > blocks.y1) continue;
+    w.blocks = 0;
+    for (int by = blocks.y0; by <= blocks.y1; ++by)
+      for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
+        const std::size_t index = buffer.blockIndex(bx, by);
+        w.blocks |= index < 64 ? BlockMask{1} << index : kAllBlocks;
+      }
+    w.coverage = false;
+    w.piece = pieces[i];
+    ++n;
+  }
+  return n;
+}
+std::size_t PrepareTriangles(const CpuDepthBuffer& buffer, const RasterPass& pass,
+                             const ScreenTriangle* triangles, std::size_t count,
+                             PreparedWrite<ScreenTriangle>* out) {
+  return prepare(buffer, pass, triangles, count, out);
+}
+std::size_t PrepareQuads(const CpuDepthBuffer& buffer, const RasterPass& pass,
+                         const ScreenQuad* quads, std::size_t count,
+                         PreparedWrite<ScreenQuad>* out) {
+  return prepare(buffer, pass, quads, count, out);
+}
+
+template <class Piece>
+void writePreparedPieces(CpuDepthBuffer& buffer, const RasterPass& pass,
+                         PreparedWrite<Piece>* writes, std::size_t count, BlockMask mask,
+                         RasterWork& work) {
+  for (std::size_t i = 0; i < count; ++i) {
+    PreparedWrite<Piece>& w = writes[i];
+    if ((w.blocks & mask) == 0) continue;
+    if (smallBox(pass, w.raster)) {
+      drawSmall<!kTest>(buffer, pass, w.raster, mask, work);
+      continue;
+    }
+    if (decidedByBlocks<!kTest>(buffer, pass, w.raster, mask)) continue;
+    if (!w.coverage) {
+      setupCoverage(w.piece, pass, RasterRole::Write, w.raster);
+      w.coverage = true;
+    }
+    drawBlocks<!kTest>(buffer, pass, w.raster, mask, work);
+  }
+}
+void WritePreparedTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
+                            PreparedWrite<ScreenTriangle>* writes, std::size_t count,
+                            BlockMask mask, RasterWork& work) {
+  writePreparedPieces(buffer, pass, writes, count, mask, work);
+}
+void WritePreparedQuads(CpuDepthBuffer& buffer, const RasterPass& pass,
+                        PreparedWrite<ScreenQuad>* writes, std::size_t count, BlockMask mask,
+                        RasterWork& work) {
+  writePreparedPieces(buffer, pass, writes, count, mask, work);
 }
 
 template <class Piece>
 std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
                               std::size_t count, RasterWork& work) {
   for (std::size_t i = 0; i < count; ++i)
-    if (testTriangle(buffer, pass, pieces[i], work)) return i;
+    if (drawPiece<kTest>(buffer, pass, pieces[i], work)) return i;
   return count;
 }
 std::size_t TestUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
@@ -328,23 +420,13 @@ std::size_t TestQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pas
 void TestEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
               std::size_t count, std::uint8_t* fullyVisible, RasterWork& work) {
   for (std::size_t i = 0; i < count; ++i)
-    if (testTriangle(buffer, pass, triangles[i], work)) fullyVisible[i] = 0;
+    if (fullyVisible[i] && drawPiece<kTest>(buffer, pass, triangles[i], work)) fullyVisible[i] = 0;
 }
 
 template <class Piece>
 void writeAll(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
               std::size_t count, RasterWork& work) {
-  TriangleRaster r;
-  for (std::size_t i = 0; i < count; ++i) {
-    if (!setupBounds(pieces[i], pass, RasterRole::Write, r)) continue;
-    if (smallBox(pass, r)) {
-      writeSmall(buffer, pass, r, work);
-      continue;
-    }
-    if (decidedByTiles(buffer, pass, r, RasterRole::Write)) continue;
-    setupCoverage(pieces[i], pass, RasterRole::Write, r);
-    writeOne(buffer, pass, r, work);
-  }
+  for (std::size_t i = 0; i < count; ++i) drawPiece<!kTest>(buffer, pass, pieces[i], work);
 }
 void WriteAll(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
               std::size_t count, RasterWork& work) {
@@ -369,6 +451,10 @@ HWY_EXPORT(TestEach);
 HWY_EXPORT(WriteAll);
 HWY_EXPORT(TestQuadsUntilOccluded);
 HWY_EXPORT(WriteQuads);
+HWY_EXPORT(PrepareTriangles);
+HWY_EXPORT(PrepareQuads);
+HWY_EXPORT(WritePreparedTriangles);
+HWY_EXPORT(WritePreparedQuads);
 HWY_EXPORT(TargetName);
 
 std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
@@ -399,6 +485,31 @@ std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pas
 void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,
                 RasterWork& work) {
   HWY_DYNAMIC_DISPATCH(WriteQuads)(buffer, pass, quads.data(), quads.size(), work);
+}
+
+std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
+                          std::span<const ScreenTriangle> triangles,
+                          PreparedWrite<ScreenTriangle>* out) {
+  return HWY_DYNAMIC_DISPATCH(PrepareTriangles)(buffer, pass, triangles.data(), triangles.size(),
+                                                out);
+}
+
+std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
+                          std::span<const ScreenQuad> quads, PreparedWrite<ScreenQuad>* out) {
+  return HWY_DYNAMIC_DISPATCH(PrepareQuads)(buffer, pass, quads.data(), quads.size(), out);
+}
+
+void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
+                   std::span<PreparedWrite<ScreenTriangle>> writes, BlockMask mask,
+                   RasterWork& work) {
+  HWY_DYNAMIC_DISPATCH(WritePreparedTriangles)(buffer, pass, writes.data(), writes.size(), mask,
+                                               work);
+}
+
+void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
+                   std::span<PreparedWrite<ScreenQuad>> writes, BlockMask mask,
+                   RasterWork& work) {
+  HWY_DYNAMIC_DISPATCH(WritePreparedQuads)(buffer, pass, writes.data(), writes.size(), mask, work);
 }
 
 const char* rasteriserTarget() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }

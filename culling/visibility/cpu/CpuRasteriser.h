@@ -1,8 +1,11 @@
 #pragma once
-// The CPU depth rasteriser's pixel loops: tests and writes of screen-space triangles against a
-// CpuDepthBuffer, tile by tile, eight pixels of a tile row per SIMD step (Google Highway, the
-// best instruction set of the machine chosen at run time). Tests stop at their first occluded
-// sample; tile bounds accept or reject whole tiles.
+// The CPU depth rasteriser's pixel loops: tests and writes of screen-space triangles (and box faces
+// as quads) against the window a CpuDepthBuffer holds, block by block, eight pixels of a block row
+// per SIMD step (Google Highway, the best instruction set of the machine chosen at run time).
+// Tests and writes walk the same traversal, so they cannot disagree on coverage or block order;
+// tests stop at their first occluded sample; block bounds accept or reject whole blocks. A piece
+// reaching beyond the window is drawn only inside it, with exactly the coverage and keys it has in
+// the whole frame.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -16,6 +19,10 @@ namespace cdb {
 struct RasterWork {
   std::uint64_t pixelsTested = 0;
   std::uint64_t pixelsWritten = 0;
+  RasterWork& operator+=(const RasterWork& o) {
+    pixelsTested += o.pixelsTested, pixelsWritten += o.pixelsWritten;
+    return *this;
+  }
 };
 
 // Tests the triangles in order as one piece; returns the index of the first with an occluded
@@ -25,7 +32,7 @@ struct RasterWork {
                                                      std::span<const ScreenTriangle> triangles,
                                                      RasterWork& work);
 // Tests each triangle as its own piece: fullyVisible[i] = 0 where triangle i has an occluded
-// sample (other entries are left alone).
+// sample; triangles whose entry is already 0 are not tested.
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
                       RasterWork& work);
@@ -39,6 +46,34 @@ void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
                                                  RasterWork& work);
 void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,
                 RasterWork& work);
+
+// Writes prepared once and drawn block by block (a write drawn where tests need it, in parts): bit
+// i of a mask is block i of the buffer's window (CpuDepthBuffer::blockIndex; windows of at most 64
+// blocks, a larger one is drawn whole with kAllBlocks).
+using BlockMask = std::uint64_t;
+inline constexpr BlockMask kAllBlocks = ~BlockMask{0};
+// A piece with its pixel box and key bounds set up (step 1), the blocks of the window its box
+// reaches, and its coverage (step 2) once a block needed it.
+template <class Piece>
+struct PreparedWrite {
+  TriangleRaster raster;
+  BlockMask blocks = 0;
+  bool coverage = false;
+  Piece piece;
+};
+// The pieces with a pixel in the buffer's window, prepared, into out[0 ..]; returns how many.
+std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
+                          std::span<const ScreenTriangle> triangles,
+                          PreparedWrite<ScreenTriangle>* out);
+std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
+                          std::span<const ScreenQuad> quads, PreparedWrite<ScreenQuad>* out);
+// Writes prepared pieces into the blocks of `mask` only: drawn block by block in any order and
+// split, they leave what writeTriangles (writeQuads) leaves.
+void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
+                   std::span<PreparedWrite<ScreenTriangle>> writes, BlockMask mask,
+                   RasterWork& work);
+void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
+                   std::span<PreparedWrite<ScreenQuad>> writes, BlockMask mask, RasterWork& work);
 
 // The instruction set the loops run with ("AVX2", "AVX3", "SSE4", ...).
 [[nodiscard]] const char* rasteriserTarget();

@@ -1,0 +1,242 @@
+#include "culling/visibility/cpu/CpuBins.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "culling/visibility/cpu/CpuDepthBuffer.h"
+#include "culling/visibility/cpu/CpuPieces.h"
+
+namespace cdb {
+
+namespace {
+
+// Items of command `c`: its triangles in chunks on the mesh's chunk grid (a Range), in chunks of
+// its list (Listed), or its boxes one by one.
+std::uint32_t itemCount(const CpuCommand& c) {
+  switch (c.source) {
+    case CpuCommand::Source::Range:
+      return c.count == 0 ? 0
+                          : (c.first + c.count - 1) / kChunkTriangles - c.first / kChunkTriangles + 1;
+    case CpuCommand::Source::Listed:
+      return (c.count + kChunkTriangles - 1) / kChunkTriangles;
+    case CpuCommand::Source::Boxes:
+      return c.count;
+  }
+  return 0;
+}
+
+// Screen extent of a box (centre and half extents) in the frame of `toScreen`: exact up to
+// rounding.
+struct ScreenExtent {
+  Eigen::Vector3d lo, hi;
+};
+ScreenExtent extentOf(const ScreenMatrix& toScreen, const Eigen::Vector3d& centre,
+                      const Eigen::Vector3d& half) {
+  const Eigen::Vector3d mid = toScreen.leftCols<3>() * centre + toScreen.col(3);
+  const Eigen::Vector3d reach = toScreen.leftCols<3>().cwiseAbs() * half;
+  return {mid - reach, mid + reach};
+}
+ScreenExtent extentOf(const ScreenMatrix& toScreen, const Eigen::AlignedBox3f& local) {
+  const Eigen::AlignedBox3d box = local.cast<double>();
+  return extentOf(toScreen, box.center(), box.sizes() * 0.5);
+}
+
+// The pixels a triangle within the extent can cover: a pixel more on each side than the set-up
+// can reach (its margin, the conservative rule's extra pixel), so that every triangle's pixel box
+// (setupBounds) lies inside. Empty when off-screen; the whole frame when not finite (the set-up
+// draws no such triangle).
+PixelRect pixelsOf(const ScreenExtent& e, const RasterPass& pass) {
+  const double last = pass.resolution - 1;
+  if (!e.lo.allFinite() || !e.hi.allFinite())
+    return {0, 0, static_cast<int>(last), static_cast<int>(last)};
+  const double m = pass.marginPx + 1.0;
+  const double x0 = std::max(0.0, std::floor(e.lo.x() - m) - 1.0);
+  const double y0 = std::max(0.0, std::floor(e.lo.y() - m) - 1.0);
+  const double x1 = std::min(last, std::ceil(e.hi.x() + m));
+  const double y1 = std::min(last, std::ceil(e.hi.y() + m));
+  if (x1 < x0 || y1 < y0) return {};
+  return {static_cast<int>(x0), static_cast<int>(y0), static_cast<int>(x1), static_cast<int>(y1)};
+}
+
+// An item's rectangle and key range: keys widened far beyond the rounding of the transforms, and
+// moved by the pass' offsets as the set-up moves them.
+void boundItem(const ScreenExtent& e, const RasterPass& pass, CpuItem& item) {
+  item.rect = pixelsOf(e, pass);
+  if (!e.lo.allFinite() || !e.hi.allFinite()) {
+    item.kLo = pass.keyLo, item.kHi = pass.keyHi;
+    return;
+  }
+  const double slack = 1e-9 * (1.0 + std::abs(e.lo.z()) + std::abs(e.hi.z()));
+  const double shift = pass.conservative ? (item.test ? pass.depthEpsilon : -pass.depthEpsilon)
+                                         : (item.test ? pass.rawTestOffset : 0.0);
+  const auto clampToPass = [&](float v) { return std::clamp(v, pass.keyLo, pass.keyHi); };
+  item.kLo = clampToPass(raster_detail::roundDown(e.lo.z() + shift - slack));
+  item.kHi = clampToPass(raster_detail::roundUp(e.hi.z() + shift + slack));
+}
+
+// A chunk item's bounds from the boxes of its parts (empty boxes: parts it does not have).
+void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3f> parts,
+                const RasterPass& pass, CpuItem& item) {
+  Eigen::AlignedBox3f all;
+  for (std::size_t p = 0; p < item.parts.size(); ++p) {
+    item.parts[p] = parts[p].isEmpty() ? PixelRect{} : pixelsOf(extentOf(toScreen, parts[p]), pass);
+    all.extend(parts[p]);
+  }
+  if (all.isEmpty()) {
+    item.rect = {};
+    return;
+  }
+  boundItem(extentOf(toScreen, all), pass, item);
+}
+
+// Every item of command `ci`, at items[0 ..].
+void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
+               std::span<const CpuMeshBounds> bounds, std::uint32_t ci, std::uint32_t pass,
+               CpuItem* items) {
+  const CpuCommand& c = recording.commands[ci];
+  const RasterPass& raster = recording.passes[pass].raster;
+  CpuItem base;
+  base.command = ci, base.pass = pass, base.answer = c.query;
+  base.test = c.role == CpuCommand::Role::Test;
+  base.answerEach = base.test && c.answerEach;
+  const auto answerOf = [&](std::uint32_t offset) { return c.query + (c.answerEach ? offset : 0); };
+  const CpuMeshBounds& mesh = bounds[c.mesh];
+  constexpr std::size_t kParts = kChunkTriangles / kPartTriangles;
+  std::array<Eigen::AlignedBox3f, kParts> parts;
+  switch (c.source) {
+    case CpuCommand::Source::Range: {
+      const std::uint32_t end = c.first + c.count;
+      std::uint32_t n = 0;
+      for (std::uint32_t at = c.first; at < end; ++n) {
+        const std::uint32_t chunk = at / kChunkTriangles;
+        const std::uint32_t stop = std::min(end, (chunk + 1) * kChunkTriangles);
+        CpuItem& item = items[n] = base;
+        item.first = at, item.count = stop - at, item.answer = answerOf(at - c.first);
+        // Part p: the item's triangles [p, p + 1) * kPartTriangles (as chunkPieces reads them).
+        for (std::size_t p = 0; p < kParts; ++p) {
+          const std::uint32_t p0 = std::min<std::uint32_t>(stop, at + p * kPartTriangles);
+          const std::uint32_t p1 = std::min<std::uint32_t>(stop, p0 + kPartTriangles);
+          parts[p] = {};
+          if (p0 == p1) continue;  // the item has no such part
+          if (p0 % kPartTriangles == 0 && (p1 - p0 == kPartTriangles || p1 == mesh.triangles.size()))
+            parts[p] = mesh.parts[p0 / kPartTriangles];
+          else
+            for (std::uint32_t t = p0; t < p1; ++t) parts[p].extend(mesh.triangles[t]);
+        }
+        boundChunk(c.toScreen, parts, raster, item);
+        at = stop;
+      }
+      return;
+    }
+    case CpuCommand::Source::Listed: {
+      for (std::uint32_t n = 0, at = 0; at < c.count; ++n, at += kChunkTriangles) {
+        CpuItem& item = items[n] = base;
+        item.first = c.first + at;
+        item.count = std::min(kChunkTriangles, c.count - at);
+        item.answer = answerOf(at);
+        for (std::size_t p = 0; p < kParts; ++p) {
+          parts[p] = {};
+          const std::uint32_t p1 = std::min<std::uint32_t>(item.count, (p + 1) * kPartTriangles);
+          for (std::uint32_t i = p * kPartTriangles; i < p1; ++i)
+            parts[p].extend(mesh.triangles[recording.listed[item.first + i]]);
+        }
+        boundChunk(c.toScreen, parts, raster, item);
+      }
+      return;
+    }
+    case CpuCommand::Source::Boxes:
+      for (std::uint32_t b = 0; b < c.count; ++b) {
+        CpuItem& item = items[b] = base;
+        item.first = c.first + b, item.count = 1, item.answer = answerOf(b);
+        const ScreenMatrix cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
+        boundItem(extentOf(cube, Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()), raster, item);
+      }
+      return;
+  }
+  (void)scene;
+}
+
+template <class Body>
+void forEach(tbb::task_arena* arena, std::size_t count, const Body& body) {
+  if (!arena || count < 2) {
+    for (std::size_t i = 0; i < count; ++i) body(i);
+    return;
+  }
+  arena->execute([&] { tbb::parallel_for(std::size_t{0}, count, body); });
+}
+
+void binChain(const CpuRecording& recording, const CpuBins& bins, CpuChain& chain) {
+  const std::uint32_t firstCommand = recording.passes[chain.firstPass].firstCommand;
+  const std::uint32_t endCommand = recording.passes[chain.endPass - 1].endCommand;
+  const std::uint32_t firstItem = bins.firstItem[firstCommand];
+  const std::uint32_t endItem = bins.firstItem[endCommand];
+  const int size = chain.tileSize;
+  const std::size_t tiles = static_cast<std::size_t>(chain.tilesX) * chain.tilesX;
+  chain.offsets.assign(tiles + 1, 0);
+  const auto forTiles = [&](const CpuItem& item, auto&& visit) {
+    for (int ty = item.rect.y0 / size; ty <= item.rect.y1 / size; ++ty)
+      for (int tx = item.rect.x0 / size; tx <= item.rect.x1 / size; ++tx)
+        visit(static_cast<std::size_t>(ty) * chain.tilesX + tx);
+  };
+  for (std::uint32_t i = firstItem; i < endItem; ++i)
+    if (!bins.items[i].rect.empty())
+      forTiles(bins.items[i], [&](std::size_t t) { ++chain.offsets[t + 1]; });
+  chain.tilesUsed.clear();
+  for (std::size_t t = 0; t < tiles; ++t) {
+    if (chain.offsets[t + 1] > 0) chain.tilesUsed.push_back(static_cast<std::uint32_t>(t));
+    chain.offsets[t + 1] += chain.offsets[t];
+  }
+  chain.binned.resize(chain.offsets[tiles]);
+  std::vector<std::uint32_t> fill(chain.offsets.begin(), chain.offsets.end() - 1);
+  for (std::uint32_t i = firstItem; i < endItem; ++i)
+    if (!bins.items[i].rect.empty())
+      forTiles(bins.items[i], [&](std::size_t t) { chain.binned[fill[t]++] = i; });
+}
+
+}  // namespace
+
+void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
+                  std::span<const CpuMeshBounds> bounds, int tileSize, int continuedTileSize,
+                  tbb::task_arena* arena, CpuBins& bins) {
+  const std::size_t commands = recording.commands.size();
+  bins.firstItem.resize(commands + 1);
+  std::uint32_t total = 0;
+  for (std::size_t i = 0; i < commands; ++i) {
+    bins.firstItem[i] = total;
+    total += itemCount(recording.commands[i]);
+  }
+  bins.firstItem[commands] = total;
+  bins.items.resize(total);
+
+  // Chains, and each command's pass.
+  bins.chains.clear();
+  std::vector<std::uint32_t> passOf(commands);
+  for (std::uint32_t p = 0; p < recording.passes.size(); ++p) {
+    const CpuPass& pass = recording.passes[p];
+    for (std::uint32_t i = pass.firstCommand; i < pass.endCommand; ++i) passOf[i] = p;
+    if (p == 0 || pass.clears) {
+      CpuChain& chain = bins.chains.emplace_back();
+      chain.firstPass = p;
+      chain.resolution = pass.raster.resolution;
+      constexpr int kBlock = CpuDepthBuffer::kBlock;
+      chain.tileSize = pass.continues ? continuedTileSize
+                       : tileSize > 0 ? tileSize
+                                      : (chain.resolution + kBlock - 1) / kBlock * kBlock;
+      chain.tilesX = tilesAcross(chain.resolution, chain.tileSize);
+      chain.continues = pass.continues;
+      chain.clearValue = pass.clearValue;
+    }
+    bins.chains.back().endPass = p + 1;
+  }
+
+  forEach(arena, commands, [&](std::size_t i) {
+    makeItems(recording, scene, bounds, static_cast<std::uint32_t>(i), passOf[i],
+              bins.items.data() + bins.firstItem[i]);
+  });
+  forEach(arena, bins.chains.size(),
+          [&](std::size_t c) { binChain(recording, bins, bins.chains[c]); });
+}
+
+}  // namespace cdb

@@ -1,0 +1,95 @@
+#pragma once
+// Step 1 of running a recording: binning. Each command is cut into items (a chunk of
+// kChunkTriangles triangles, or one box), each item gets the pixel rectangle and the key range
+// its pixels can have (from a box in its object's frame, so no triangle is transformed), and the
+// items of each chain of passes sharing one depth buffer are listed per screen tile, in issue
+// order. A tile's list is all CpuTileEvaluation needs to evaluate that tile on its own.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <tbb/task_arena.h>
+
+#include "culling/visibility/cpu/CpuMeshBounds.h"
+#include "culling/visibility/cpu/CpuRecording.h"
+
+namespace cdb {
+
+// Pixels [x0, x1] x [y0, y1] (inclusive) of the frame.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  [[nodiscard]] bool empty() const { return x0 > x1 || y0 > y1; }
+  [[nodiscard]] bool overlaps(const PixelRect& o) const {
+    return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1;
+  }
+  [[nodiscard]] PixelRect within(const PixelRect& o) const {
+    return {std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
+  }
+};
+
+struct CpuItem {
+  std::uint32_t command = 0;
+  // Range: its first mesh triangle; Listed: its first entry of CpuRecording::listed; Boxes: its
+  // box in CpuRecording::boxes.
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;  // triangles, or 1 box
+  QueryIndex answer = 0;    // a test's (first) answer
+  std::uint32_t pass = 0;
+  bool test = false;
+  bool answerEach = false;  // a test answering per triangle (answer + i for its i-th)
+  // Every pixel any of its pieces covers lies in `rect` (empty: none in the frame), and every key
+  // it tests or writes there (its offsets toward "occluded" included) in [kLo, kHi].
+  PixelRect rect;
+  float kLo = 0.f;
+  float kHi = 0.f;
+  // The same rectangle per part of kPartTriangles triangles, in order (chunks only).
+  std::array<PixelRect, kChunkTriangles / kPartTriangles> parts;
+};
+
+// Passes that share one depth buffer, in order: a pass that clears starts one; a SharedSecond
+// pass, or draws going on after a fetch, join the one before (or the buffer a previous recording
+// left: `continues`).
+struct CpuChain {
+  std::uint32_t firstPass = 0, endPass = 0;
+  int resolution = 0;
+  int tileSize = 0;  // pixels, a multiple of CpuDepthBuffer::kBlock
+  int tilesX = 0;    // tiles per row and per column
+  bool continues = false;
+  float clearValue = 1.f;  // the value its first pass clears to (unless it continues)
+  // Items of tile t: binned[offsets[t] .. offsets[t + 1]), ascending (issue order).
+  std::vector<std::uint32_t> offsets;
+  std::vector<std::uint32_t> binned;
+  std::vector<std::uint32_t> tilesUsed;  // tiles with at least one item, ascending
+  [[nodiscard]] std::span<const std::uint32_t> itemsOf(std::uint32_t tile) const {
+    return {binned.data() + offsets[tile], binned.data() + offsets[tile + 1]};
+  }
+};
+
+struct CpuBins {
+  std::vector<CpuItem> items;
+  std::vector<std::uint32_t> firstItem;  // per command, and one past the last
+  std::vector<CpuChain> chains;
+};
+
+// A recording with its bins: what one fetch ran, kept while writes it left pending may still be
+// resolved (its buffer goes on in a later recording).
+struct CpuRun {
+  CpuRecording recording;
+  CpuBins bins;
+};
+
+// Tiles of a frame (per row and column) at `tileSize` pixels.
+[[nodiscard]] inline int tilesAcross(int resolution, int tileSize) {
+  return (resolution + tileSize - 1) / tileSize;
+}
+
+// Bins the (closed) recording; its commands' meshes are the scene's, `bounds` their
+// CpuMeshBounds. Tiles are `tileSize` pixels (0: one tile the whole frame, rounded up to a block);
+// a chain that continues a buffer keeps that buffer's `continuedTileSize`. Runs on `arena` when
+// given.
+void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
+                  std::span<const CpuMeshBounds> bounds, int tileSize, int continuedTileSize,
+                  tbb::task_arena* arena, CpuBins& bins);
+
+}  // namespace cdb

@@ -1,0 +1,155 @@
+#include "culling/visibility/cpu/CpuPieces.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cdb {
+
+namespace {
+
+inline void toScreen(const ScreenMatrix& m, const Eigen::Vector3f& v, ScreenTriangle& t, int i) {
+  const Eigen::Vector3d p = m.leftCols<3>() * v.cast<double>() + m.col(3);
+  t.x[i] = p.x(), t.y[i] = p.y(), t.k[i] = p.z();
+}
+
+// Whether a triangle of a closed mesh can decide its command. Along every line of sight a closed
+// surface is crossed as often toward the viewer as away from it (its winding number is 0 far
+// away), so behind each crossing of a face turned toward the viewer lies one of a face turned away,
+// at the same screen point: in every pixel square, the farthest depth of the mesh over what it
+// covers is reached on a face turned away (what a test needs) and the nearest on one turned
+// toward the viewer (a write). Faces near edge-on (or collapsed) are kept for both. The screen
+// frame (x, y, key) is right-handed, so a counter-clockwise triangle in x, y faces along +key.
+inline bool drawnForRole(const ScreenTriangle& t, std::int8_t winding, CpuCommand::Role role) {
+  if (winding == 0) return true;
+  const double e1x = t.x[1] - t.x[0], e1y = t.y[1] - t.y[0];
+  const double e2x = t.x[2] - t.x[0], e2y = t.y[2] - t.y[0];
+  const double facing = winding * (e1x * e2y - e1y * e2x);  // > 0: turned away from the viewer
+  // Far above double's rounding of the screen coordinates (2^-50 relative).
+  const double edgeOn = 1e-9 * (std::abs(e1x) + std::abs(e1y)) * (std::abs(e2x) + std::abs(e2y));
+  return role == CpuCommand::Role::Test ? facing >= -edgeOn : facing <= edgeOn;
+}
+
+// The unit cube [-1, 1]^3 (corner i has x, y, z = bits 0, 1, 2) as two triangles per face;
+// faces in the order -x, +x, -y, +y, -z, +z. A face's two triangles share their first and third
+// corner, so a, b, c of the first and the second's last go around the face.
+constexpr std::array<std::array<int, 6>, 6> kCubeFaces = {{
+    {0, 2, 6, 0, 6, 4}, {1, 5, 7, 1, 7, 3}, {0, 4, 5, 0, 5, 1},
+    {2, 3, 7, 2, 7, 6}, {0, 1, 3, 0, 3, 2}, {4, 6, 7, 4, 7, 5}}};
+
+// The faces of a box that decide its answer (in kCubeFaces order). A box is convex: along any
+// line of sight the faces facing away from the viewer are farthest and those facing it nearest,
+// and each set covers the box's whole outline. So in every pixel the farthest depth of the box
+// over the part of the square it covers is reached on a back face (what a test needs), the nearest
+// on a front face (a write): the other faces change nothing. Faces seen edge-on (key not changing
+// along their normal) belong to both sets.
+std::array<bool, 6> decidingFaces(const ScreenMatrix& cube, CpuCommand::Role role) {
+  std::array<bool, 6> keep{};
+  const bool test = role == CpuCommand::Role::Test;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double outward = cube(2, axis);  // how the key changes going out through the + face
+    for (int positive = 0; positive < 2; ++positive) {
+      const double away = positive ? outward : -outward;  // > 0: the face looks away (back)
+      keep[2 * axis + positive] = away == 0.0 || (test ? away > 0.0 : away < 0.0);
+    }
+  }
+  return keep;
+}
+
+}  // namespace
+
+void chunkPieces(const CpuRecording& recording, const Mesh& mesh, const CpuMeshBounds& bounds,
+                 const CpuCommand& c, const CpuItem& item, const PixelRect& window,
+                 double marginPx, CpuPieces& out) {
+  out.areQuads = false;
+  out.count = 0;
+  const bool listed = c.source == CpuCommand::Source::Listed;
+  const auto triangleAt = [&](std::uint32_t i) {
+    return listed ? recording.listed[item.first + i] : item.first + i;
+  };
+  // Each mesh vertex is transformed once, when a triangle first needs it: a triangle's corners are
+  // vertices of its mesh chunk (CpuMeshBounds::cornersInChunk), and a list is in ascending order
+  // almost always, so the vertices of one chunk are kept at a time.
+  std::uint32_t chunk = ~std::uint32_t{0};
+  const std::uint32_t* chunkVertices = nullptr;
+  double vx[3 * kChunkTriangles], vy[3 * kChunkTriangles], vk[3 * kChunkTriangles];
+  bool done[3 * kChunkTriangles];
+  ScreenTriangle vertex;  // a vertex in slot 0
+  // A pixel box lies within [minX - margin - 1, maxX + margin] (and the same in y), in either
+  // rasterisation mode; a little more is left for rounding.
+  const double reach = marginPx + 2.0;
+  const double wx0 = window.x0 - reach, wx1 = window.x1 + reach;
+  const double wy0 = window.y0 - reach, wy1 = window.y1 + reach;
+  std::size_t kept = 0;
+  for (std::uint32_t part = 0; part < item.count; part += kPartTriangles) {
+    if (!item.parts[part / kPartTriangles].overlaps(window)) continue;
+    const std::uint32_t end = std::min(item.count, part + kPartTriangles);
+    for (std::uint32_t i = part; i < end; ++i) {
+      const std::uint32_t tri = triangleAt(i);
+      if (tri / kChunkTriangles != chunk) {
+        chunk = tri / kChunkTriangles;
+        chunkVertices = bounds.chunkVertices.data() + bounds.chunkVertexStart[chunk];
+        std::fill(std::begin(done), std::end(done), false);
+      }
+      ScreenTriangle& s = out.triangles[kept];
+      const auto& at = bounds.cornersInChunk[tri];
+      for (int v = 0; v < 3; ++v) {
+        const std::uint8_t a = at[v];
+        if (!done[a]) {
+          toScreen(c.toScreen, mesh.vertices[chunkVertices[a]], vertex, 0);
+          vx[a] = vertex.x[0], vy[a] = vertex.y[0], vk[a] = vertex.k[0], done[a] = true;
+        }
+        s.x[v] = vx[a], s.y[v] = vy[a], s.k[v] = vk[a];
+      }
+      // (A non-finite vertex fails every comparison and is kept: the set-up drops it.)
+      const double minX = std::min({s.x[0], s.x[1], s.x[2]});
+      const double maxX = std::max({s.x[0], s.x[1], s.x[2]});
+      const double minY = std::min({s.y[0], s.y[1], s.y[2]});
+      const double maxY = std::max({s.y[0], s.y[1], s.y[2]});
+      if (maxX < wx0 || minX > wx1 || maxY < wy0 || minY > wy1) continue;
+      if (!drawnForRole(s, c.winding, c.role)) continue;
+      out.offset[kept++] = static_cast<std::uint8_t>(i);
+    }
+  }
+  out.count = kept;
+}
+
+ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box) {
+  ScreenMatrix m;
+  m.leftCols<3>() = objectToScreen.leftCols<3>() * box.axes * box.halfExtents.asDiagonal();
+  m.col(3) = objectToScreen.leftCols<3>() * box.center + objectToScreen.col(3);
+  return m;
+}
+
+void boxPieces(const CpuRecording& recording, const CpuCommand& c, std::uint32_t box,
+               bool conservative, CpuPieces& out) {
+  const ScreenMatrix cube = cubeToScreen(c.toScreen, recording.boxes[box]);
+  std::array<Eigen::Vector3d, 8> corner;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d u((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
+    corner[i] = cube.leftCols<3>() * u + cube.col(3);
+  }
+  const std::array<bool, 6> keep = decidingFaces(cube, c.role);
+  out.areQuads = conservative;
+  std::size_t n = 0;
+  for (int f = 0; f < 6; ++f) {
+    if (!keep[f]) continue;
+    const auto& face = kCubeFaces[f];
+    if (conservative) {
+      const int around[4] = {face[0], face[1], face[2], face[5]};
+      for (int v = 0; v < 4; ++v) {
+        const Eigen::Vector3d& p = corner[around[v]];
+        out.quads[n].x[v] = p.x(), out.quads[n].y[v] = p.y(), out.quads[n].k[v] = p.z();
+      }
+      ++n;
+      continue;
+    }
+    for (int t = 0; t < 2; ++t, ++n)
+      for (int v = 0; v < 3; ++v) {
+        const Eigen::Vector3d& p = corner[face[3 * t + v]];
+        out.triangles[n].x[v] = p.x(), out.triangles[n].y[v] = p.y(), out.triangles[n].k[v] = p.z();
+      }
+  }
+  out.count = n;
+}
+
+}  // namespace cdb

@@ -1,0 +1,42 @@
+#pragma once
+// The pieces a binned item draws, in its pass' screen space (x, y in pixels, depth key): a chunk
+// of a command's triangles, or one box's faces that decide its answer. Made again in every tile
+// that rasterises the item; binning itself never transforms a triangle.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "culling/visibility/cpu/CpuBins.h"
+#include "culling/visibility/cpu/CpuMeshBounds.h"
+#include "culling/visibility/cpu/CpuRecording.h"
+#include "culling/visibility/cpu/CpuTriangleSetup.h"
+#include "scenes/Mesh.h"
+
+namespace cdb {
+
+struct CpuPieces {
+  std::array<ScreenTriangle, kChunkTriangles> triangles;
+  std::array<std::uint8_t, kChunkTriangles> offset;  // triangle i is the item's offset[i]-th
+  std::array<ScreenQuad, 6> quads;
+  std::size_t count = 0;
+  bool areQuads = false;
+};
+
+// The triangles of chunk item `item` (mesh triangles of a Range, entries of the recording's list
+// for a Listed command) that its command draws inside `window` (pixels of the frame, in a pass
+// whose coverage margin is `marginPx`): of a closed mesh drawn whole only the faces that decide it
+// (CpuCommand::winding), and none whose pixel box misses the window (nor any of a part whose
+// rectangle misses it).
+void chunkPieces(const CpuRecording& recording, const Mesh& mesh, const CpuMeshBounds& bounds,
+                 const CpuCommand& c, const CpuItem& item, const PixelRect& window,
+                 double marginPx, CpuPieces& out);
+
+// A box's matrix from the unit cube [-1, 1]^3 to the screen.
+[[nodiscard]] ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box);
+
+// The faces of the recording's box `box` that decide command `c`'s answer or write: as quads in
+// conservative passes, as triangles in raw ones (whose pixel-centre rule is a triangle's).
+void boxPieces(const CpuRecording& recording, const CpuCommand& c, std::uint32_t box,
+               bool conservative, CpuPieces& out);
+
+}  // namespace cdb

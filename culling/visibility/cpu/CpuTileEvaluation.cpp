@@ -1,0 +1,249 @@
+#include "culling/visibility/cpu/CpuTileEvaluation.h"
+
+#include <algorithm>
+#include <bit>
+#include <type_traits>
+
+#include "culling/visibility/cpu/CpuPieces.h"
+
+namespace cdb {
+
+namespace {
+
+constexpr int kBlock = CpuDepthBuffer::kBlock;
+
+PixelRect tileRect(const CpuDepthBuffer& depth) {
+  return {depth.pixelX0(), depth.pixelY0(), depth.pixelX1(), depth.pixelY1()};
+}
+
+// The blocks of the window under `rect` (inside the window) as a mask.
+BlockMask blocksUnder(const CpuDepthBuffer& depth, const PixelRect& rect) {
+  BlockMask mask = 0;
+  for (int by = rect.y0 / kBlock; by <= rect.y1 / kBlock; ++by)
+    for (int bx = rect.x0 / kBlock; bx <= rect.x1 / kBlock; ++bx)
+      mask |= BlockMask{1} << depth.blockIndex(bx, by);
+  return mask;
+}
+
+// Nearest and farthest stored key over the blocks of `mask`.
+struct StoredKeys {
+  float nearest = 0.f, farthest = 0.f;
+};
+StoredKeys storedKeys(const CpuDepthBuffer& depth, BlockMask mask, float sign) {
+  const auto first = static_cast<std::size_t>(std::countr_zero(mask));
+  float lo = depth.blockMin(first), hi = depth.blockMax(first);
+  for (BlockMask m = mask & (mask - 1); m != 0; m &= m - 1) {
+    const auto i = static_cast<std::size_t>(std::countr_zero(m));
+    lo = std::min(lo, depth.blockMin(i)), hi = std::max(hi, depth.blockMax(i));
+  }
+  return sign > 0 ? StoredKeys{lo, hi} : StoredKeys{-hi, -lo};
+}
+
+// The pieces of an item that reach the buffer's window, in its pass' screen space.
+void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
+              const CpuDepthBuffer& depth, CpuPieces& pieces) {
+  const CpuRecording& recording = run.recording;
+  const CpuCommand& c = recording.commands[item.command];
+  const RasterPass& raster = recording.passes[item.pass].raster;
+  if (c.source == CpuCommand::Source::Boxes)
+    boxPieces(recording, c, item.first, raster.conservative, pieces);
+  else
+    chunkPieces(recording, scene.geometry.meshes[c.mesh], scene.bounds[c.mesh], c, item,
+                tileRect(depth), raster.marginPx, pieces);
+}
+
+// A write drawn whole where it is (the plain evaluation).
+void writeItem(CpuDepthBuffer& depth, const CpuScene& scene, const CpuRun& run,
+               const CpuItem& item, CpuTileWork& work) {
+  CpuPieces pieces;
+  piecesOf(scene, run, item, depth, pieces);
+  const RasterPass& raster = run.recording.passes[item.pass].raster;
+  if (pieces.areQuads)
+    writeQuads(depth, raster, {pieces.quads.data(), pieces.count}, work.raster);
+  else
+    writeTriangles(depth, raster, {pieces.triangles.data(), pieces.count}, work.raster);
+  ++work.writesRasterised;
+}
+
+// A pending write drawn into the blocks of `blocks` (of those it has not been drawn in), prepared
+// first if no test needed it before.
+template <class Piece>
+void drawPrepared(std::vector<PreparedWrite<Piece>>& prepared, CpuDepthBuffer& depth,
+                  const RasterPass& raster, const CpuPieces& pieces, CpuPendingWrite& p,
+                  BlockMask blocks, CpuTileWork& work) {
+  if (p.firstPrepared == CpuPendingWrite::kNotSetUp) {
+    const std::size_t at = prepared.size();
+    prepared.resize(at + pieces.count);
+    std::size_t n;
+    if constexpr (std::is_same_v<Piece, ScreenQuad>)
+      n = prepareWrites(depth, raster, {pieces.quads.data(), pieces.count}, prepared.data() + at);
+    else
+      n = prepareWrites(depth, raster, {pieces.triangles.data(), pieces.count},
+                        prepared.data() + at);
+    prepared.resize(at + n);
+    p.firstPrepared = static_cast<std::uint32_t>(at);
+    p.preparedCount = static_cast<std::uint32_t>(n);
+    ++work.writesRasterised;
+  }
+  writePrepared(depth, raster, {prepared.data() + p.firstPrepared, p.preparedCount},
+                blocks & p.remaining, work.raster);
+}
+
+void drawPending(CpuTileState& state, const CpuScene& scene, CpuPendingWrite& p, BlockMask blocks,
+                 CpuTileWork& work) {
+  const CpuItem& item = p.run->bins.items[p.item];
+  const RasterPass& raster = p.run->recording.passes[item.pass].raster;
+  CpuPieces pieces;
+  if (p.firstPrepared == CpuPendingWrite::kNotSetUp) {
+    piecesOf(scene, *p.run, item, state.depth, pieces);
+    p.quads = pieces.areQuads;
+  }
+  if (p.quads)
+    drawPrepared(state.preparedQuads, state.depth, raster, pieces, p, blocks, work);
+  else
+    drawPrepared(state.preparedTriangles, state.depth, raster, pieces, p, blocks, work);
+  p.remaining &= ~blocks;
+}
+
+// Tests an item's pieces against what the tile holds; clears the answers it finds occluded and
+// returns whether any of its answers is still visible.
+bool testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
+                const CpuItem& item, std::uint8_t* visible, CpuAnswers answers,
+                CpuTileWork& work) {
+  if (item.answerEach && !pieces.areQuads && item.count > 1) {
+    // One answer per triangle.
+    testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster);
+    bool any = false;
+    for (std::size_t i = 0; i < pieces.count; ++i) {
+      if (!visible[i]) answers.occlude(item.answer + pieces.offset[i]);
+      any = any || visible[i];
+    }
+    return any;
+  }
+  const bool occluded =
+      pieces.areQuads
+          ? testQuadsUntilOccluded(depth, raster, {pieces.quads.data(), pieces.count},
+                                   work.raster) < pieces.count
+          : testTrianglesUntilOccluded(depth, raster, {pieces.triangles.data(), pieces.count},
+                                       work.raster) < pieces.count;
+  if (occluded) answers.occlude(item.answer);
+  return !occluded;
+}
+
+bool answered(const CpuItem& item, CpuAnswers answers) {
+  const std::uint32_t n = item.answerEach ? item.count : 1;
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (answers.visible(item.answer + i)) return false;
+  return true;
+}
+
+// A pass of the other depth order goes on in the buffer (a SharedSecond pass after its
+// SharedFirst). Writes pending from before are older than everything to come; when all their keys
+// lie behind the new pass' whole range, no test of it can find them in front and every write of
+// it overwrites them, so they are dropped; otherwise they are drawn now, in order, before
+// anything of the new pass.
+void enterPass(CpuTileState& state, const CpuScene& scene, const RasterPass& raster,
+               CpuTileWork& work) {
+  if (state.sign == raster.sign) return;
+  if (state.sign != 0.f) {
+    bool behind = true;
+    for (const CpuPendingWrite& p : state.pending) {
+      // Stored values of its keys, then their nearest key in the new order.
+      const float vLo = state.sign > 0 ? p.kLo : -p.kHi, vHi = state.sign > 0 ? p.kHi : -p.kLo;
+      const float nearest = raster.sign > 0 ? vLo : -vHi;
+      behind = behind && nearest > raster.keyHi;
+    }
+    if (!behind)
+      for (CpuPendingWrite& p : state.pending) drawPending(state, scene, p, p.remaining, work);
+    state.pending.clear();
+  }
+  state.sign = raster.sign;
+}
+
+}  // namespace
+
+CpuTileWork& CpuTileWork::operator+=(const CpuTileWork& o) {
+  raster += o.raster;
+  tests += o.tests, testsByBounds += o.testsByBounds, testsSkipped += o.testsSkipped;
+  testsAfterResolving += o.testsAfterResolving;
+  writes += o.writes, writesRasterised += o.writesRasterised;
+  return *this;
+}
+
+void startTile(CpuTileState& state, const CpuChain& chain, std::uint32_t tile, float clearValue,
+               std::uint64_t chainId) {
+  const int blocks = chain.tileSize / kBlock;
+  const int tx = static_cast<int>(tile % chain.tilesX), ty = static_cast<int>(tile / chain.tilesX);
+  state.depth.place(chain.resolution, tx * blocks, ty * blocks, blocks, blocks);
+  state.depth.clear(clearValue);
+  state.pending.clear();
+  state.preparedTriangles.clear();
+  state.preparedQuads.clear();
+  state.sign = 0.f;
+  state.chain = chainId;
+}
+
+void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
+                  std::uint32_t chain, std::uint32_t tile, const CpuEvaluation& evaluation,
+                  CpuAnswers answers, CpuTileWork& work) {
+  const PixelRect inTile = tileRect(state.depth);
+  for (const std::uint32_t i : run.bins.chains[chain].itemsOf(tile)) {
+    const CpuItem& item = run.bins.items[i];
+    const RasterPass& raster = run.recording.passes[item.pass].raster;
+    enterPass(state, scene, raster, work);
+    if (!item.test) {
+      ++work.writes;
+      if (!evaluation.demandDriven) {
+        writeItem(state.depth, scene, run, item, work);
+        continue;
+      }
+      const BlockMask blocks = blocksUnder(state.depth, item.rect.within(inTile));
+      // At or behind everything stored under it (pending writes only add nearer keys): it
+      // changes nothing.
+      if (item.kLo >= storedKeys(state.depth, blocks, raster.sign).farthest) continue;
+      state.pending.push_back({blocks, item.kLo, item.kHi, &run, i});
+      continue;
+    }
+    ++work.tests;
+    if (evaluation.earlyOut && answered(item, answers)) {
+      ++work.testsSkipped;
+      continue;
+    }
+    const BlockMask blocks = evaluation.demandDriven
+                                 ? blocksUnder(state.depth, item.rect.within(inTile))
+                                 : BlockMask{0};
+    const auto reads = [&](const CpuPendingWrite& p) {
+      return (p.remaining & blocks) != 0 && p.kLo <= item.kHi;
+    };
+    const bool readsPending = std::any_of(state.pending.begin(), state.pending.end(), reads);
+    if (evaluation.demandDriven && !readsPending &&
+        item.kHi < storedKeys(state.depth, blocks, raster.sign).nearest) {
+      ++work.testsByBounds;
+      continue;
+    }
+    CpuPieces pieces;
+    piecesOf(scene, run, item, state.depth, pieces);
+    // Triangles another tile found occluded are not tested again (with the early-out).
+    std::uint8_t visible[kChunkTriangles];
+    for (std::size_t t = 0; t < pieces.count; ++t)
+      visible[t] = !evaluation.earlyOut || answers.visible(item.answer + pieces.offset[t]);
+    // Against what the tile holds first: occluded there, the pending writes stay pending.
+    if (!testPieces(state.depth, pieces, raster, item, visible, answers, work) || !readsPending)
+      continue;
+    ++work.testsAfterResolving;
+    for (CpuPendingWrite& p : state.pending)
+      if (reads(p)) drawPending(state, scene, p, blocks, work);
+    std::erase_if(state.pending, [](const CpuPendingWrite& p) { return p.remaining == 0; });
+    testPieces(state.depth, pieces, raster, item, visible, answers, work);
+  }
+}
+
+void rasteriseWrites(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
+                     std::span<const std::uint32_t> items, CpuTileWork& work) {
+  for (const std::uint32_t i : items) {
+    const CpuItem& item = run.bins.items[i];
+    if (!item.test) writeItem(state.depth, scene, run, item, work);
+  }
+}
+
+}  // namespace cdb

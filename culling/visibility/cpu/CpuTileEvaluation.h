@@ -1,0 +1,115 @@
+#pragma once
+// Step 2 of running a recording: one screen tile of a chain (passes sharing a depth buffer)
+// evaluated on its own, on demand. A depth value matters only where a later test of the same pass
+// reads it and cannot be decided without it, so the tile's items are walked in issue order and:
+//  - a write is appended to the tile's pending writes (the 8x8 blocks of its rectangle and its key
+//    range), not drawn; one whose nearest key is at or behind everything stored under it changes
+//    nothing and goes;
+//  - a test of an answer another tile already found occluded is skipped (the early-out: a piece
+//    is fully visible only when every tile says so);
+//  - a test is decided without pixels when no pending write with blocks under it can lie in front
+//    of it (its nearest key at most the test's farthest) and the stored depths under it are all
+//    behind it; otherwise those pending writes are drawn into exactly the blocks under the test
+//    (set up once per tile, kept for the blocks a later test may need) and the test's own pixels
+//    in the tile are tested.
+// A write no undecided test reads is never rasterised. The answer is the one drawing every write
+// and testing every piece gives: stored depth is the nearest of what was written (in one pass'
+// order, so a write drawn later or in parts leaves the same), and a pending write left out can only
+// be behind the test wherever both have pixels.
+#include <atomic>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "culling/visibility/cpu/CpuBins.h"
+#include "culling/visibility/cpu/CpuDepthBuffer.h"
+#include "culling/visibility/cpu/CpuMeshBounds.h"
+#include "culling/visibility/cpu/CpuRasteriser.h"
+#include "scenes/SceneGeometry.h"
+
+namespace cdb {
+
+// How a recording is evaluated. The answers and the depths tests read are the same for every
+// setting; only the work done differs (plain: demandDriven and earlyOut off, one tile).
+struct CpuEvaluation {
+  // Pixels, a multiple of 8, at most 64 when demand-driven (a write's blocks in a tile are a
+  // 64-bit mask); 0: the whole frame is one tile.
+  int tileSize = 64;
+  bool demandDriven = true;  // off: every write rasterised where it is drawn, every test tested
+  bool earlyOut = true;      // a test found occluded in one tile is skipped in the others
+};
+
+// The attached scene, and what binning knows of its meshes.
+struct CpuScene {
+  const SceneGeometry& geometry;
+  std::span<const CpuMeshBounds> bounds;
+};
+
+struct CpuPendingWrite {
+  static constexpr std::uint32_t kNotSetUp = ~std::uint32_t{0};
+  BlockMask remaining = 0;  // blocks of its rectangle in the tile it is not drawn in yet
+  float kLo = 0.f, kHi = 0.f;
+  const CpuRun* run = nullptr;
+  std::uint32_t item = 0;
+  // Its pieces prepared in CpuTileState::preparedTriangles (or preparedQuads), once a test needed
+  // some of its blocks.
+  std::uint32_t firstPrepared = kNotSetUp;
+  std::uint32_t preparedCount = 0;
+  bool quads = false;
+};
+
+// A tile of a chain's depth buffer: the depths resolved so far and the writes still pending.
+struct CpuTileState {
+  CpuDepthBuffer depth;
+  std::vector<CpuPendingWrite> pending;
+  std::vector<PreparedWrite<ScreenTriangle>> preparedTriangles;
+  std::vector<PreparedWrite<ScreenQuad>> preparedQuads;
+  float sign = 0.f;         // the key order of the pass of its last item (0: none yet)
+  std::uint64_t chain = 0;  // which chain's tile it holds (0: none)
+};
+
+// What tiles did, summed into VisibilityCounters.
+struct CpuTileWork {
+  RasterWork raster;
+  std::uint64_t tests = 0;          // (test item, tile) visits
+  std::uint64_t testsByBounds = 0;  // of them decided without pixels
+  std::uint64_t testsSkipped = 0;   // of them skipped: answered elsewhere
+  std::uint64_t testsAfterResolving = 0;  // tested again after drawing pending writes
+  std::uint64_t writes = 0;         // (write item, tile) visits
+  std::uint64_t writesRasterised = 0;
+  CpuTileWork& operator+=(const CpuTileWork& o);
+};
+
+// The answers all tiles of a recording share, 1 = fully visible so far. Tiles on other threads
+// only ever clear an answer, so it ends as the AND over every tile whatever the order.
+class CpuAnswers {
+ public:
+  explicit CpuAnswers(std::uint8_t* data) : data_(data) {}
+  [[nodiscard]] bool visible(QueryIndex q) const {
+    return std::atomic_ref<std::uint8_t>(data_[q]).load(std::memory_order_relaxed) != 0;
+  }
+  void occlude(QueryIndex q) const {
+    std::atomic_ref<std::uint8_t>(data_[q]).store(0, std::memory_order_relaxed);
+  }
+
+ private:
+  std::uint8_t* data_;
+};
+
+// Makes `state` tile `tile` of a fresh buffer of the chain `chainId` (every pixel at
+// `clearValue`, nothing pending).
+void startTile(CpuTileState& state, const CpuChain& chain, std::uint32_t tile, float clearValue,
+               std::uint64_t chainId);
+
+// Walks the items chain `chain` of `run` binned to tile `tile`, on `state` (that tile of the
+// chain's buffer).
+void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
+                  std::uint32_t chain, std::uint32_t tile, const CpuEvaluation& evaluation,
+                  CpuAnswers answers, CpuTileWork& work);
+
+// Rasterises every write of `items` (of `run`) into `state`, in order: the plain evaluation of
+// what a tile stores.
+void rasteriseWrites(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
+                     std::span<const std::uint32_t> items, CpuTileWork& work);
+
+}  // namespace cdb

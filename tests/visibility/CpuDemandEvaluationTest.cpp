@@ -1,0 +1,445 @@
+// The cpu backend's demand-driven, tile-parallel evaluation against its plain evaluation (one tile
+// the whole frame, every write rasterised where it is drawn, every test tested, no early-out):
+// the same answers and the same stored depths, whatever the tile size and the thread count, on
+// CULLIDE-like draws, on pieces decided by bounds, and on random scenes and command streams
+// (tests, writes, batches, boxes, both depth uses, fetches in the middle of a pass).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "core/Errors.h"
+#include "culling/visibility/cpu/CpuRasterBackend.h"
+#include "tests/visibility/GlTestSupport.h"
+
+// Helpers in a namespace of their own: unity builds compile test files together.
+namespace cdb::demand_evaluation_test {
+namespace {
+
+// A closed sphere of `rings` x `segments` quads (two triangles each, caps of triangles), wound
+// counter-clockwise seen from outside, its vertices moved radially at random so that it is not
+// convex: many small triangles that overlap in depth.
+Mesh bumpySphere(unsigned seed, int rings, int segments) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> bump(0.7f, 1.0f);
+  Mesh m;
+  m.name = "bumpy sphere";
+  m.vertices.emplace_back(0.f, 0.f, bump(rng));  // north pole
+  for (int r = 1; r < rings; ++r) {
+    const double theta = std::numbers::pi * r / rings;
+    for (int s = 0; s < segments; ++s) {
+      const double phi = 2 * std::numbers::pi * s / segments;
+      const float radius = bump(rng);
+      m.vertices.emplace_back(radius * std::sin(theta) * std::cos(phi),
+                              radius * std::sin(theta) * std::sin(phi), radius * std::cos(theta));
+    }
+  }
+  m.vertices.emplace_back(0.f, 0.f, -bump(rng));  // south pole
+  const auto at = [&](int ring, int s) {          // ring 1 .. rings - 1
+    return static_cast<std::uint32_t>(1 + (ring - 1) * segments + (s % segments));
+  };
+  const auto south = static_cast<std::uint32_t>(m.vertices.size() - 1);
+  for (int s = 0; s < segments; ++s) {
+    m.triangles.push_back({0, at(1, s), at(1, s + 1)});
+    for (int r = 1; r + 1 < rings; ++r) {
+      m.triangles.push_back({at(r, s), at(r + 1, s), at(r + 1, s + 1)});
+      m.triangles.push_back({at(r, s), at(r + 1, s + 1), at(r, s + 1)});
+    }
+    m.triangles.push_back({at(rings - 1, s), south, at(rings - 1, s + 1)});
+  }
+  return m;
+}
+
+std::vector<Pose> posesAround(unsigned seed, std::size_t n, double spread) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Pose> poses(n);
+  for (Pose& p : poses) {
+    p.rotation = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized();
+    p.translation = Eigen::Vector3d(u(rng), u(rng), u(rng)) * spread;
+  }
+  return poses;
+}
+
+// What a command stream gave: the answers of every fetch, the buffer the last pass left, and the
+// counters of what was issued (those of work done differ by design).
+struct Outcome {
+  std::vector<std::vector<std::uint8_t>> answers;
+  std::vector<float> buffer;
+  VisibilityCounters counters;
+};
+
+using Stream = std::function<void(CpuRasterBackend&, Outcome&)>;
+
+Outcome run(const SceneGeometry& scene, const std::vector<Pose>& poses, const Stream& stream,
+            bool conservative, const CpuEvaluation& evaluation, int threads) {
+  CpuRasterBackend backend(VisibilityOptions{conservative, 1e-5, threads});
+  backend.setEvaluation(evaluation);
+  backend.attachScene(scene);
+  backend.setPoses(poses);
+  Outcome out;
+  stream(backend, out);
+  out.counters = backend.counters();
+  return out;
+}
+
+void fetchInto(CpuRasterBackend& backend, Outcome& out) {
+  std::vector<std::uint8_t> answers;
+  backend.fetchResults(answers);
+  out.answers.push_back(answers);
+}
+
+void readBuffer(CpuRasterBackend& backend, int resolution, Outcome& out) {
+  for (int y = 0; y < resolution; ++y)
+    for (int x = 0; x < resolution; ++x) out.buffer.push_back(backend.storedDepth(x, y));
+}
+
+constexpr CpuEvaluation kPlain{0, false, false};
+
+// The demand-driven settings compared with the plain evaluation: tiles of one block, of 4 x 4 and
+// of 8 x 8, with and without the early-out, at 1, 2 and 4 threads.
+struct Setting {
+  CpuEvaluation evaluation;
+  int threads;
+};
+std::vector<Setting> demandSettings() {
+  std::vector<Setting> settings;
+  for (int tile : {8, 32, 64})
+    for (bool earlyOut : {false, true})
+      for (int threads : {1, 2, 4}) settings.push_back({{tile, true, earlyOut}, threads});
+  return settings;
+}
+
+// Compares every demand-driven setting with the plain evaluation; returns the plain outcome.
+Outcome expectSameAsPlain(const SceneGeometry& scene, const std::vector<Pose>& poses,
+                          const Stream& stream, bool conservative) {
+  const Outcome plain = run(scene, poses, stream, conservative, kPlain, 1);
+  for (const Setting& s : demandSettings()) {
+    SCOPED_TRACE(testing::Message() << "tile " << s.evaluation.tileSize << ", early-out "
+                                    << s.evaluation.earlyOut << ", " << s.threads << " threads");
+    const Outcome demand = run(scene, poses, stream, conservative, s.evaluation, s.threads);
+    EXPECT_EQ(demand.answers, plain.answers);
+    EXPECT_EQ(demand.buffer, plain.buffer);
+    EXPECT_EQ(demand.counters.queries, plain.counters.queries);
+    EXPECT_EQ(demand.counters.draws, plain.counters.draws);
+    EXPECT_EQ(demand.counters.trianglesDrawn, plain.counters.trianglesDrawn);
+    EXPECT_EQ(demand.counters.fetches, plain.counters.fetches);
+    // The point of it: fewer pixels written than drawing every write.
+    EXPECT_LE(demand.counters.pixelsWritten, plain.counters.pixelsWritten);
+  }
+  return plain;
+}
+
+// Both answers occur, and the buffer holds more than its clear value: the comparison decides
+// something.
+void expectBothAnswers(const Outcome& outcome) {
+  int visible = 0, total = 0;
+  for (const auto& fetch : outcome.answers)
+    for (std::uint8_t v : fetch) visible += v, ++total;
+  EXPECT_GT(visible, total / 20);
+  EXPECT_LT(visible, total - total / 20);
+  if (!outcome.buffer.empty()) {
+    EXPECT_NE(std::ranges::min(outcome.buffer), std::ranges::max(outcome.buffer));
+  }
+}
+
+// CULLIDE's draws along each axis (pass 1 tests and writes every object in order, pass 2 in
+// reverse, fresh depth, one fetch), then a triangle level (per member a batch of tests, then its
+// listed triangles written), a pair of depth-sorted passes (one clear, opposite views) and node
+// boxes tested and written in both passes of a view.
+Stream cullideDraws(const SceneGeometry& scene, int resolution) {
+  return [&scene, resolution](CpuRasterBackend& backend, Outcome& out) {
+    const Aabb bounds(Eigen::Vector3d::Constant(-2.5), Eigen::Vector3d::Constant(2.5));
+    const auto objects = static_cast<ObjectId>(scene.objectCount());
+    for (int axis = 0; axis < 3; ++axis) {
+      const ViewSpec view{Eigen::Vector3d::Unit(axis), bounds, resolution};
+      for (int pass = 0; pass < 2; ++pass) {
+        backend.beginPass(view, DepthUse::Fresh);
+        for (ObjectId i = 0; i < objects; ++i) {
+          const ObjectId o = pass == 0 ? i : objects - 1 - i;
+          backend.queryRange(test::wholeOf(scene, o));
+          backend.writeRange(test::wholeOf(scene, o));
+        }
+      }
+      fetchInto(backend, out);
+    }
+    std::vector<std::vector<std::uint32_t>> lists(objects);
+    for (ObjectId o = 0; o < objects; ++o)
+      for (std::uint32_t t = 0; t < scene.meshOf(o).triangleCount(); ++t)
+        if ((t + o) % 5 != 0) lists[o].push_back(t);
+    const ViewSpec side{Eigen::Vector3d(1, 1, 0).normalized(), bounds, resolution};
+    for (int pass = 0; pass < 2; ++pass) {
+      backend.beginPass(side, DepthUse::Fresh);
+      for (ObjectId i = 0; i < objects; ++i) {
+        const ObjectId o = pass == 0 ? i : objects - 1 - i;
+        backend.queryTriangles(o, lists[o]);
+        backend.writeTriangles(o, lists[o]);
+      }
+    }
+    fetchInto(backend, out);
+    const ViewSpec up{Eigen::Vector3d::UnitZ(), bounds, resolution};
+    ViewSpec down = up;
+    down.direction = -up.direction;
+    backend.beginPass(up, DepthUse::SharedFirst);
+    for (ObjectId o = 0; o < objects; ++o) {
+      backend.queryRange(test::wholeOf(scene, o));
+      backend.writeRange(test::wholeOf(scene, o));
+    }
+    backend.beginPass(down, DepthUse::SharedSecond);
+    for (ObjectId o = objects; o-- > 0;) {
+      backend.queryRange(test::wholeOf(scene, o));
+      backend.writeRange(test::wholeOf(scene, o));
+    }
+    fetchInto(backend, out);
+    std::vector<OrientedBox> boxes(30);
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+      boxes[b].center = Eigen::Vector3d(0.05 * b - 0.7, -0.2 + 0.01 * b, 0.01 * b);
+      boxes[b].halfExtents = Eigen::Vector3d(0.08, 0.05 + 0.004 * b, 0.06);
+    }
+    for (int pass = 0; pass < 2; ++pass) {
+      backend.beginPass(up, DepthUse::Fresh);
+      for (ObjectId i = 0; i < objects; ++i) {
+        const ObjectId o = pass == 0 ? i : objects - 1 - i;
+        backend.queryBoxes(o, boxes);
+        backend.writeBoxes(o, boxes);
+      }
+    }
+    fetchInto(backend, out);
+    readBuffer(backend, resolution, out);
+  };
+}
+
+TEST(CpuDemandEvaluation, CullideDrawsAnswerAsPlainEvaluation) {
+  std::vector<Mesh> meshes;
+  for (int o = 0; o < 9; ++o) meshes.push_back(bumpySphere(11 + o, 18 + o % 3, 16));
+  const SceneGeometry scene = test::sceneOf(std::move(meshes));
+  const std::vector<Pose> poses = posesAround(3, scene.objectCount(), 1.2);
+  for (bool conservative : {true, false})
+    for (int resolution : {64, 201}) {
+      SCOPED_TRACE(testing::Message()
+                   << (conservative ? "conservative" : "raw") << " at " << resolution << " px");
+      expectBothAnswers(
+          expectSameAsPlain(scene, poses, cullideDraws(scene, resolution), conservative));
+    }
+}
+
+// A wall (a square facing the view) written first, then small spheres scattered over and around
+// it, some in front, some behind, some through it, each tested and written, then each tested
+// again: many tests decided by bounds, and many pieces whose bounds end near a tile's edge.
+TEST(CpuDemandEvaluation, PiecesDecidedByBoundsAnswerAsPlainEvaluation) {
+  for (unsigned seed : {1u, 2u}) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<Mesh> meshes{test::squareMesh(0.f, 0.f, 0.f, 1.f)};
+    std::vector<Pose> poses(1);
+    for (int o = 0; o < 40; ++o) {
+      Mesh m = bumpySphere(seed + o, 6, 8);
+      for (auto& v : m.vertices) v *= 0.12f;
+      meshes.push_back(std::move(m));
+      Pose p;
+      p.translation = Eigen::Vector3d(1.3 * u(rng), 1.3 * u(rng), 0.25 * u(rng));
+      poses.push_back(p);
+    }
+    const SceneGeometry scene = test::sceneOf(std::move(meshes));
+    for (bool conservative : {true, false})
+      for (int resolution : {64, 100}) {
+        SCOPED_TRACE(testing::Message() << (conservative ? "conservative" : "raw") << " at "
+                                        << resolution << " px, seed " << seed);
+        const Stream wall = [&scene, resolution](CpuRasterBackend& backend, Outcome& out) {
+          const Aabb bounds(Eigen::Vector3d(-1.5, -1.5, -0.5), Eigen::Vector3d(1.5, 1.5, 0.5));
+          const auto objects = static_cast<ObjectId>(scene.objectCount());
+          backend.beginPass({Eigen::Vector3d::UnitZ(), bounds, resolution}, DepthUse::Fresh);
+          backend.writeRange(test::wholeOf(scene, 0));
+          for (ObjectId o = 1; o < objects; ++o) {
+            backend.queryRange(test::wholeOf(scene, o));
+            backend.writeRange(test::wholeOf(scene, o));
+          }
+          for (ObjectId o = 1; o < objects; ++o) backend.queryRange(test::wholeOf(scene, o));
+          fetchInto(backend, out);
+          readBuffer(backend, resolution, out);
+        };
+        expectBothAnswers(expectSameAsPlain(scene, poses, wall, conservative));
+      }
+  }
+}
+
+// Random scenes (small random meshes and bumpy spheres, touching and apart) and random command
+// streams: every kind of draw, passes of either depth use at random resolutions, fetches at
+// random points (between a SharedFirst pass and its SharedSecond, and in the middle of a pass,
+// which then goes on).
+SceneGeometry randomScene(std::mt19937& rng, int objects) {
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  std::vector<Mesh> meshes;
+  for (int o = 0; o < objects; ++o) {
+    if (o % 3 == 0) {
+      Mesh m = bumpySphere(rng(), 5 + o % 4, 6 + o % 5);
+      for (auto& v : m.vertices) v *= 0.4f;
+      meshes.push_back(std::move(m));
+      continue;
+    }
+    Mesh m;
+    m.name = "random";
+    const int triangles = 1 + static_cast<int>(rng() % 90);
+    for (int t = 0; t < triangles; ++t) {
+      const Eigen::Vector3f centre(u(rng), u(rng), u(rng));
+      for (int v = 0; v < 3; ++v)
+        m.vertices.push_back(centre * 0.4f + Eigen::Vector3f(u(rng), u(rng), u(rng)) * 0.15f);
+      const auto first = static_cast<std::uint32_t>(3 * t);
+      m.triangles.push_back({first, first + 1, first + 2});
+    }
+    meshes.push_back(std::move(m));
+  }
+  return test::sceneOf(std::move(meshes));
+}
+
+Stream randomStream(unsigned seed, const SceneGeometry& scene) {
+  return [seed, &scene](CpuRasterBackend& backend, Outcome& out) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const auto pick = [&](int n) { return static_cast<int>(rng() % static_cast<unsigned>(n)); };
+    const auto objects = static_cast<ObjectId>(scene.objectCount());
+    const int resolutions[] = {29, 64, 100, 157};
+    int lastResolution = 64;
+    const auto someTriangles = [&](ObjectId o) {
+      std::vector<std::uint32_t> list;
+      const auto count = static_cast<std::uint32_t>(scene.meshOf(o).triangleCount());
+      for (std::uint32_t t = 0; t < count; ++t)
+        if (pick(3) != 0) list.push_back(t);
+      return list;
+    };
+    const auto someBoxes = [&] {
+      std::vector<OrientedBox> boxes(1 + pick(5));
+      for (OrientedBox& b : boxes) {
+        b.center = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 0.4;
+        b.axes = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+        b.halfExtents = Eigen::Vector3d(0.02 + 0.2 * std::abs(u(rng)), 0.02 + 0.2 * std::abs(u(rng)),
+                                        pick(6) == 0 ? 0.0 : 0.02 + 0.2 * std::abs(u(rng)));
+      }
+      return boxes;
+    };
+    const auto draws = [&](int count) {
+      for (int d = 0; d < count; ++d) {
+        const auto o = static_cast<ObjectId>(pick(static_cast<int>(objects)));
+        const auto triangles = static_cast<std::uint32_t>(scene.meshOf(o).triangleCount());
+        const std::uint32_t first = static_cast<std::uint32_t>(pick(static_cast<int>(triangles)));
+        const MeshRange part{o, first, static_cast<std::uint32_t>(pick(static_cast<int>(triangles - first) + 1))};
+        switch (pick(9)) {
+          case 0: backend.queryRange(test::wholeOf(scene, o)); break;
+          case 1: backend.queryRange(part); break;
+          case 2: backend.queryTriangles(part); break;
+          case 3: backend.queryTriangles(o, someTriangles(o)); break;
+          case 4: backend.queryBoxes(o, someBoxes()); break;
+          case 5: backend.writeRange(pick(2) ? test::wholeOf(scene, o) : part); break;
+          case 6: backend.writeTriangles(o, someTriangles(o)); break;
+          case 7: backend.writeBoxes(o, someBoxes()); break;
+          default:  // a test and a write of the same object, as the strategies draw
+            backend.queryRange(test::wholeOf(scene, o));
+            backend.writeRange(test::wholeOf(scene, o));
+        }
+      }
+    };
+    for (int round = 0; round < 8; ++round) {
+      const Eigen::Vector3d direction =
+          Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+      const int resolution = resolutions[pick(4)];
+      // Views holding every object, or a part (the rest off-screen, or clamped to the depth
+      // range: pieces at equal keys).
+      const double half = pick(2) ? 1.6 : 0.3 + 0.3 * std::abs(u(rng));
+      const Aabb bounds(Eigen::Vector3d::Constant(-half), Eigen::Vector3d::Constant(half));
+      if (pick(3) == 0) {
+        // Two passes, one clear, opposite views; a fetch between them half of the time.
+        backend.beginPass({direction, bounds, resolution}, DepthUse::SharedFirst);
+        draws(10 + pick(20));
+        if (pick(2)) fetchInto(backend, out);
+        backend.beginPass({-direction, bounds, resolution}, DepthUse::SharedSecond);
+        draws(10 + pick(20));
+      } else {
+        backend.beginPass({direction, bounds, resolution}, DepthUse::Fresh);
+        draws(10 + pick(30));
+      }
+      lastResolution = resolution;
+      if (pick(3) != 0) fetchInto(backend, out);
+      if (pick(3) == 0) {  // the pass goes on after a fetch
+        fetchInto(backend, out);
+        draws(5 + pick(10));
+      }
+    }
+    fetchInto(backend, out);
+    readBuffer(backend, lastResolution, out);
+  };
+}
+
+TEST(CpuDemandEvaluation, RandomStreamsAnswerAsPlainEvaluation) {
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
+    std::mt19937 rng(seed * 7919u);
+    const SceneGeometry scene = randomScene(rng, 24);
+    const std::vector<Pose> poses = posesAround(seed, scene.objectCount(), 0.8);
+    for (bool conservative : {true, false}) {
+      SCOPED_TRACE(testing::Message() << (conservative ? "conservative" : "raw") << ", seed "
+                                      << seed);
+      expectBothAnswers(
+          expectSameAsPlain(scene, poses, randomStream(seed, scene), conservative));
+    }
+  }
+}
+
+// Without the early-out a tile's work depends on nothing another tile does: the counters of work
+// done do not depend on the thread count either.
+TEST(CpuDemandEvaluation, WorkWithoutEarlyOutDoesNotDependOnThreads) {
+  std::mt19937 rng(99);
+  const SceneGeometry scene = randomScene(rng, 24);
+  const std::vector<Pose> poses = posesAround(5, scene.objectCount(), 0.8);
+  const CpuEvaluation evaluation{16, true, false};
+  const Outcome one = run(scene, poses, randomStream(5, scene), true, evaluation, 1);
+  const Outcome four = run(scene, poses, randomStream(5, scene), true, evaluation, 4);
+  EXPECT_EQ(four.answers, one.answers);
+  EXPECT_EQ(four.counters.pixelsWritten, one.counters.pixelsWritten);
+  EXPECT_EQ(four.counters.pixelsTested, one.counters.pixelsTested);
+  EXPECT_EQ(four.counters.tileTestsByBounds, one.counters.tileTestsByBounds);
+  EXPECT_EQ(four.counters.tileWritesRasterised, one.counters.tileWritesRasterised);
+  EXPECT_GT(one.counters.tileTestsByBounds, 0u);
+  EXPECT_LT(one.counters.tileWritesRasterised, one.counters.tileWrites);
+}
+
+// Pieces beyond the depth range are clamped to its ends, so a write and a test there have equal
+// keys, and equal is occluded: in front of the near plane in a fresh pass, behind the far plane of
+// a SharedFirst pass (whose clear value lies beyond it). Their key bounds tie too.
+TEST(CpuDemandEvaluation, TiesAtTheEndsOfTheDepthRange) {
+  const SceneGeometry scene = test::sceneOf({test::squareMesh(0, 0, -5, 0.5f),
+                                             test::squareMesh(0.2f, 0, -4, 0.5f),
+                                             test::squareMesh(0, 0, 5, 0.5f),
+                                             test::squareMesh(0.2f, 0, 4, 0.5f)});
+  const std::vector<Pose> poses(4);
+  const Aabb bounds(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1));
+  for (const DepthUse use : {DepthUse::Fresh, DepthUse::SharedFirst}) {
+    const Stream ties = [&](CpuRasterBackend& backend, Outcome& out) {
+      backend.beginPass({Eigen::Vector3d::UnitZ(), bounds, 64}, use);
+      for (ObjectId o : {0u, 2u}) backend.writeRange(test::wholeOf(scene, o));
+      for (ObjectId o : {1u, 3u}) backend.queryRange(test::wholeOf(scene, o));
+      fetchInto(backend, out);
+    };
+    SCOPED_TRACE(use == DepthUse::Fresh ? "fresh" : "shared first");
+    const Outcome plain = expectSameAsPlain(scene, poses, ties, true);
+    ASSERT_EQ(plain.answers.size(), 1u);
+    // Both tests tie with the write beside them (in a fresh pass the far one also with the clear
+    // value, 1.0, the end of its range).
+    EXPECT_EQ(plain.answers[0], (std::vector<std::uint8_t>{0, 0}));
+  }
+}
+
+TEST(CpuDemandEvaluation, RefusesATileSizeOffTheBlockGrid) {
+  CpuRasterBackend backend;
+  for (int size : {-8, 0, 4, 12, 33, 72})
+    EXPECT_THROW(backend.setEvaluation({size, true, true}), InputError) << size;
+  EXPECT_NO_THROW(backend.setEvaluation({24, true, true}));
+  EXPECT_NO_THROW(backend.setEvaluation({64, true, false}));
+  // The plain evaluation draws whole tiles of any size.
+  EXPECT_NO_THROW(backend.setEvaluation({0, false, false}));
+  EXPECT_NO_THROW(backend.setEvaluation({800, false, false}));
+}
+
+}  // namespace
+}  // namespace cdb::demand_evaluation_test
