@@ -46,6 +46,9 @@ std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames, Detec
                                      VisibilityBackend& backend, WallTimeBreakdown& time,
                                      const std::function<void()>& afterEachFrame) {
   options.resolution = cell.resolution;
+  const bool drawsNothing = !DetectorRegistry::builtin().usesBackend(cell.strategy);
+  // What draws nothing asks no backend: its rows name none ("-"), as `cdbench check`'s do.
+  const std::string visibility = drawsNothing ? "-" : options.culling.visibility.backend;
   std::unique_ptr<CollisionDetector> detector;
   {
     const ScopedSeconds timed(time.setupSeconds);
@@ -53,7 +56,8 @@ std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames, Detec
                                                           frames.exact());
     detector->attach(frames.scene());
     // Shader compilation and framebuffer allocation at this resolution are not CD time.
-    warmUpBackend(backend, frames.scene(), frames.recording().frame(0), cell.resolution);
+    if (!drawsNothing)
+      warmUpBackend(backend, frames.scene(), frames.recording().frame(0), cell.resolution);
   }
 
   std::vector<FrameRecord> rows;
@@ -61,7 +65,7 @@ std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames, Detec
     const DetectedFrame detected =
         detector->detect({frames.recording().frame(f), static_cast<int>(f)});
     time.cdSeconds += detected.cdMs() / 1e3;
-    FrameRecord r = frameRecordOf(cell, frames, options.culling.visibility.backend, f, detected);
+    FrameRecord r = frameRecordOf(cell, frames, visibility, f, detected);
     if (frames.hasTruth()) {
       const ScopedSeconds timed(time.truthSeconds);
       const auto& truth = frames.truthPairs(f);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/Errors.h"
+#include "culling/DetectorRegistry.h"
 
 namespace cdb {
 
@@ -42,6 +43,10 @@ std::vector<Cell> planCells(const ScenarioConfig& config) {
       for (const auto& strategy : config.sweep.strategies) {
         const auto limit = config.sweep.strategyRepeats.find(strategy);
         if (limit != config.sweep.strategyRepeats.end() && repeat >= limit->second) continue;
+        if (!DetectorRegistry::builtin().usesBackend(strategy)) {
+          cells.push_back({count, repeat, strategy, kNoResolution});
+          continue;
+        }
         for (int resolution : config.sweep.resolutions)
           cells.push_back({count, repeat, strategy, resolution});
       }

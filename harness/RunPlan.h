@@ -13,7 +13,7 @@ struct Cell {
   int objectCount = -1;  // count of sweep.countedGroup; -1 = the config's own counts
   int repeat = 0;
   std::string strategy;
-  int resolution = 0;
+  int resolution = 0;  // 0 for a detector that draws nothing (kNoResolution)
 
   // File-name-safe and unique within a run: o50_r0_cullide_800 (o- when the config's counts).
   [[nodiscard]] std::string key() const;
@@ -34,9 +34,14 @@ struct Shard {
 // Parses "i/n" (1 <= i <= n). Throws InputError.
 [[nodiscard]] Shard parseShard(const std::string& text);
 
+// The resolution of a cell whose detector draws nothing (the all_pairs reference, the CPU peers):
+// its answer and time do not depend on a frame buffer, so it is measured once per simulation, not
+// once per resolution, as `cdbench check` does; tables show it in every resolution's column.
+inline constexpr int kNoResolution = 0;
+
 // Every cell of the config's sweep, grouped by (object count, repeat) so that each group's frames
-// are simulated once, then strategies, then resolutions. A strategy in sweep.strategyRepeats has
-// cells in the first N repeats only.
+// are simulated once, then strategies, then resolutions (one cell at kNoResolution for a detector
+// that draws nothing). A strategy in sweep.strategyRepeats has cells in the first N repeats only.
 [[nodiscard]] std::vector<Cell> planCells(const ScenarioConfig& config);
 // The share's cells (cell k of simulation group g, counted from the group's first, with p its
 // place in its run of n: k mod n in even runs, n - 1 - k mod n in odd ones, when

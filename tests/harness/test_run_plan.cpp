@@ -143,6 +143,24 @@ TEST(RunPlan, StrategyRepeatsLimitAStrategyToTheFirstSimulations) {
   EXPECT_EQ(seen.size(), plan.size());
 }
 
+// What draws nothing (the all_pairs reference, the CPU peers) is measured once per simulation,
+// not once per resolution, as `cdbench check` does.
+TEST(RunPlan, DetectorsThatDrawNothingGetOneCellPerSimulation) {
+  auto config = sweep(2, {50, 100});
+  config.sweep.strategies = {"cullide", "all_pairs", "fcl", "bullet", "ode"};
+  const auto plan = cdb::planCells(config);
+  std::map<std::string, std::size_t> cells;
+  for (const auto& cell : plan) {
+    ++cells[cell.strategy];
+    if (cell.strategy != "cullide") EXPECT_EQ(cell.resolution, cdb::kNoResolution) << cell.key();
+  }
+  EXPECT_EQ(cells["cullide"], 2u * 2u * 8u);
+  for (const char* s : {"all_pairs", "fcl", "bullet", "ode"}) EXPECT_EQ(cells[s], 2u * 2u) << s;
+  // Keys stay unique.
+  std::set<std::string> keys;
+  for (const auto& cell : plan) EXPECT_TRUE(keys.insert(cell.key()).second) << cell.key();
+}
+
 INSTANTIATE_TEST_SUITE_P(Sweeps, ShareSplit,
                          ::testing::Values(SplitCase{"env1_on_16", 10, {}, 16},
                                            SplitCase{"env1_on_2", 10, {}, 2},
