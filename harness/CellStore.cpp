@@ -39,23 +39,44 @@ RunIdentity CellStore::readIdentity(const std::filesystem::path& dir) {
   }
 }
 
-CellStore::CellStore(std::filesystem::path dir, const RunIdentity& identity) : dir_(std::move(dir)) {
+CellStore::CellStore(std::filesystem::path dir, RunIdentity identity)
+    : dir_(std::move(dir)), identity_(std::move(identity)) {
   std::error_code ec;
   std::filesystem::create_directories(dir_ / "cells", ec);
   if (!ec) std::filesystem::create_directories(dir_ / "recordings", ec);
   if (ec) throw RunError(dir_.string() + ": output folder cannot be created (" + ec.message() + ")");
-  if (std::filesystem::exists(dir_ / kIdentityFile)) {
-    const RunIdentity old = readIdentity(dir_);
-    if (old.hash != identity.hash || old.environment != identity.environment)
-      throw InputError(dir_.string() + ": holds cells of another run (" + old.environment + " from " +
-                       old.configPath + ", or other frames/seed/mode): use another --out");
-  }
-  const nlohmann::json j = {{"environment", identity.environment},
-                            {"identity", hex(identity.hash)},
-                            {"config", identity.configPath},
-                            {"config_text", identity.configText},
-                            {"plan", identity.plan}};
+  // Only finished cells make a folder another run's: run.json alone is what a run that failed
+  // before its first cell (a bad recording, a mesh that does not load) leaves.
+  const auto finished = cellFiles(dir_);
+  if (finished.empty() || !std::filesystem::exists(dir_ / kIdentityFile)) return;
+  const RunIdentity old = readIdentity(dir_);
+  if (old.hash != identity_.hash || old.environment != identity_.environment)
+    throw InputError(dir_.string() + ": holds " + std::to_string(finished.size()) +
+                     " finished cells of another run (" + old.environment + " from " +
+                     old.configPath + ", or other frames/seed/mode): use another --out");
+}
+
+void CellStore::claim() const {
+  const nlohmann::json j = {{"environment", identity_.environment},
+                            {"identity", hex(identity_.hash)},
+                            {"config", identity_.configPath},
+                            {"config_text", identity_.configText},
+                            {"plan", identity_.plan}};
   writeFileAtomically(dir_ / kIdentityFile, j.dump(2) + "\n");
+}
+
+std::vector<FrameRecord> CellStore::readCell(const std::filesystem::path& file) {
+  try {
+    return readFrameCsv(file);
+  } catch (const InputError& e) {
+    throw InputError(std::string(e.what()) + ": a damaged cell; delete " + file.string() +
+                     " and run the same command again to measure that cell again");
+  }
+}
+
+void CellStore::checkFinished(const std::vector<Cell>& cells) const {
+  for (const auto& cell : cells)
+    if (done(cell)) (void)readCell(cellPath(cell));
 }
 
 std::filesystem::path CellStore::cellPath(const Cell& cell) const {
@@ -79,7 +100,7 @@ void CellStore::save(const Cell& cell, const std::vector<FrameRecord>& rows) con
 std::vector<FrameRecord> CellStore::load(const std::vector<Cell>& cells) const {
   std::vector<FrameRecord> rows;
   for (const auto& cell : cells) {
-    auto part = readFrameCsv(cellPath(cell));
+    auto part = readCell(cellPath(cell));
     rows.insert(rows.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
   }
   return rows;
@@ -88,7 +109,7 @@ std::vector<FrameRecord> CellStore::load(const std::vector<Cell>& cells) const {
 std::vector<FrameRecord> CellStore::load(const std::vector<std::string>& keys) const {
   std::vector<FrameRecord> rows;
   for (const auto& key : keys) {
-    auto part = readFrameCsv(dir_ / "cells" / (key + ".csv"));
+    auto part = readCell(dir_ / "cells" / (key + ".csv"));
     rows.insert(rows.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
   }
   return rows;

@@ -1,7 +1,8 @@
 #pragma once
 // Finished cells on disk: DIR/cells/<cell key>.csv, each written atomically when its last frame is
 // measured, and DIR/run.json naming what the cells were measured from. A run that stops keeps
-// every finished cell; the same command again skips them. Cells of another config are refused.
+// every finished cell; the same command again skips them. Finished cells of another config are
+// refused; a folder with none (a run that failed before finishing one) is taken over.
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -22,11 +23,19 @@ struct RunIdentity {
 
 class CellStore {
  public:
-  // Creates DIR/cells and (re)writes DIR/run.json; throws InputError when DIR holds cells of
-  // another identity, RunError when DIR cannot be written.
-  CellStore(std::filesystem::path dir, const RunIdentity& identity);
+  // Creates DIR, DIR/cells and DIR/recordings (empty folders block no run) and writes nothing
+  // else: the run's inputs are checked before claim() names the folder the run's. Throws
+  // InputError when DIR holds finished cells of another identity, RunError when DIR cannot be
+  // created.
+  CellStore(std::filesystem::path dir, RunIdentity identity);
+
+  // (Re)writes DIR/run.json: from here on the folder holds this run. Throws RunError.
+  void claim() const;
 
   [[nodiscard]] bool done(const Cell& cell) const;
+  // Reads every finished cell of `cells`, so that a damaged one stops the run before it measures
+  // anything; throws InputError naming the file and line and how to measure the cell again.
+  void checkFinished(const std::vector<Cell>& cells) const;
   void save(const Cell& cell, const std::vector<FrameRecord>& rows) const;
   // Rows of the given cells, in their order; throws InputError for a missing or malformed one.
   [[nodiscard]] std::vector<FrameRecord> load(const std::vector<Cell>& cells) const;
@@ -37,10 +46,14 @@ class CellStore {
   // Every cell file under DIR/cells (for merging shards), sorted by name.
   [[nodiscard]] static std::vector<std::filesystem::path> cellFiles(const std::filesystem::path& dir);
   [[nodiscard]] static RunIdentity readIdentity(const std::filesystem::path& dir);
+  // The rows of one cell file; a malformed file is an InputError naming its line and saying that
+  // deleting it and running the same command again measures that cell again.
+  [[nodiscard]] static std::vector<FrameRecord> readCell(const std::filesystem::path& file);
 
  private:
   [[nodiscard]] std::filesystem::path cellPath(const Cell& cell) const;
   std::filesystem::path dir_;
+  RunIdentity identity_;
 };
 
 }  // namespace cdb

@@ -7,7 +7,6 @@
 
 #include "core/Errors.h"
 #include "harness/CellStore.h"
-#include "harness/FrameCsv.h"
 #include "harness/MachineInfo.h"
 #include "harness/RunOutputs.h"
 
@@ -43,7 +42,7 @@ MergeSummary mergeRuns(const std::filesystem::path& outDir,
       if (missing++ == 0) firstMissing = key;
       continue;
     }
-    auto part = readFrameCsv(it->second);
+    auto part = CellStore::readCell(it->second);
     rows.insert(rows.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
   }
   if (missing)

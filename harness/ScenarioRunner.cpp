@@ -157,7 +157,10 @@ RunSummary runScenario(const RunOptions& options) {
                        config.culling.visibility.backend + " backend renders (" +
                        std::to_string(backend->maxResolution()) + " pixels, " +
                        backend->renderer() + ")");
-  const CellStore store(options.outDir, identity);
+  // Nothing is written into the folder that names it this run's before the inputs are checked:
+  // the store refuses another run's finished cells, and the first cell's scene and frames (meshes,
+  // placement, the --replay file or the simulation) are made before claim().
+  const CellStore store(options.outDir, std::move(identity));
   RunSummary summary;
   std::vector<Cell> todo;
   for (const auto& c : shareOf(plan, shard)) {
@@ -166,6 +169,12 @@ RunSummary runScenario(const RunOptions& options) {
     else
       todo.push_back(c);
   }
+  store.checkFinished(plan);
+
+  CellFrames frames(config, options, store, assetSearchPath(options.assetDirs), *backend,
+                    summary.time);
+  if (!todo.empty()) frames.prepare(todo.front());
+  store.claim();
 
   DetectorOptions strategyOptions;
   strategyOptions.culling = config.culling;
@@ -182,13 +191,13 @@ RunSummary runScenario(const RunOptions& options) {
     }
   };
 
-  CellFrames frames(config, options, store, assetSearchPath(options.assetDirs), *backend,
-                    summary.time);
   for (const Cell& cell : todo) {
     frames.prepare(cell);
     progress.startCell(config.environment + " " + cell.strategy + " objects=" +
                        std::to_string(frames.movingObjects()) + " repeat=" +
-                       std::to_string(cell.repeat) + " res=" + std::to_string(cell.resolution));
+                       std::to_string(cell.repeat) + " res=" +
+                       (cell.resolution == kNoResolution ? std::string("-")
+                                                         : std::to_string(cell.resolution)));
     const auto rows =
         measureCell(cell, frames, strategyOptions, *backend, summary.time, afterEachFrame);
     for (const auto& r : rows) {

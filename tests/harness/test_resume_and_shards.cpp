@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/FrameCsv.h"
+#include "tests/common/ShellCommand.h"
 
 namespace fs = std::filesystem;
 
@@ -139,6 +141,61 @@ TEST(Resume, AnotherConfigInTheSameFolderIsRefused) {
   auto other = sweepArgs(out);
   other.insert(other.end(), {"--seed", "99"});
   EXPECT_EQ(run(other), 2);
+}
+
+// A one-simulation env3 run of 2 cells, as one shell command line.
+std::string smallRunCommand(const fs::path& out) {
+  return kBinary + " run " + kEnv3 + " --strategies cullide --objects 8 --repeats 1 --frames 3 " +
+         "--resolutions 64,96 --quiet --out " + out.string() + " 2>&1";
+}
+
+// What a run that failed before finishing a cell leaves (run.json naming another run) does not
+// keep the next run out of the folder.
+TEST(Resume, AFolderWithoutFinishedCellsNeverBlocksANewRun) {
+  const auto out = freshDir("unfinished");
+  fs::create_directories(out / "cells");
+  std::ofstream(out / "run.json") << R"({"environment": "env1", "identity": "0123456789abcdef",
+                                          "config": "configs/env1.yaml", "config_text": "", "plan": []})";
+  const auto r = cdb::test::runShellCommand(smallRunCommand(out));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(cellCount(out), 2u);
+  EXPECT_TRUE(fs::exists(out / "frames.csv"));
+  std::ifstream identity(out / "run.json");
+  EXPECT_EQ(nlohmann::json::parse(identity)["environment"], "env3");
+}
+
+// A damaged cell stops the resumed run before it measures anything, named with its line and with
+// how to measure it again; doing what the message says finishes the run.
+TEST(Resume, ADamagedCellIsNamedWithItsLineAndHowToMeasureItAgain) {
+  const auto out = freshDir("damaged");
+  ASSERT_EQ(cdb::test::runShellCommand(smallRunCommand(out)).exitCode, 0);
+  const fs::path cell = out / "cells" / "o8_r0_cullide_96.csv";
+  ASSERT_TRUE(fs::exists(cell));
+  std::string text;
+  {
+    std::ifstream in(cell);
+    std::ostringstream s;
+    s << in.rdbuf();
+    text = s.str();
+  }
+  // The third line (second frame) cut after its fourth field.
+  const auto second = text.find('\n', text.find('\n') + 1) + 1;
+  std::size_t cut = second;
+  for (int commas = 0; commas < 4; ++cut) commas += text[cut] == ',';
+  std::ofstream(cell, std::ios::trunc) << text.substr(0, cut) << "\n" << text.substr(text.find('\n', second) + 1);
+
+  const auto refused = cdb::test::runShellCommand(smallRunCommand(out));
+  EXPECT_EQ(refused.exitCode, 2) << refused.output;
+  EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
+  for (const std::string& part :
+       std::vector<std::string>{cell.string() + ":3:", "delete " + cell.string(), "run the same command again"})
+    EXPECT_NE(refused.output.find(part), std::string::npos) << part << " not in: " << refused.output;
+
+  fs::remove(cell);
+  const auto again = cdb::test::runShellCommand(smallRunCommand(out));
+  ASSERT_EQ(again.exitCode, 0) << again.output;
+  EXPECT_EQ(cdb::readFrameCsv(cell).size(), 3u);
+  EXPECT_EQ(cdb::readFrameCsv(out / "frames.csv").size(), 6u);
 }
 
 TEST(Shards, GnuParallelShardsMergedEqualTheUnshardedRun) {

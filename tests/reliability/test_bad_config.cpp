@@ -93,6 +93,21 @@ TEST_F(BadConfig, ResolutionAboveTheGlMaximum) {
   expectCleanFailure(r, 2, out(), {tooBig, std::to_string(glMax)});
 }
 
+// A value the loader accepts but the run cannot use (a mesh on no asset path) is found before the
+// output folder is claimed: the failed run leaves no run.json, and the corrected config runs into
+// the same --out.
+TEST_F(BadConfig, TheCorrectedConfigRunsIntoTheSameFolder) {
+  const std::string torus = R"(mesh: \{kind: torus[^}]*\})";
+  const auto bad = dir.write("env3.yaml", env3With(torus, "mesh: {kind: asset, asset: nosuchmesh, asset_size: 0.8}"));
+  const std::initializer_list<std::string> small = {"--objects", "3", "--resolutions", "64"};
+  expectCleanFailure(run(bad.string(), small), 2, out(), {"nosuchmesh", "not found"});
+  EXPECT_FALSE(std::filesystem::exists(out() / "run.json"));
+  dir.write("env3.yaml", shippedConfig("env3.yaml"));
+  const auto r = run(bad.string(), small);
+  ASSERT_EQ(r.exitCode, 0) << r.stdErr;
+  for (const char* f : kResultFiles) EXPECT_TRUE(std::filesystem::exists(out() / f)) << f;
+}
+
 // Bad values on the command line, each with env3: the option parser's own refusals (an unknown
 // option, text where an integer goes) and the checks of the values it accepted (ranges, names,
 // a count the placement region cannot hold).

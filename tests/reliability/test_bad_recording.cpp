@@ -65,6 +65,17 @@ TEST_F(BadRecording, TruncatedInThePoses) {
   expectCleanFailure(r, 2, out(), {file.string(), "truncated", "expected 2 frames of 4 objects"});
 }
 
+// The recording is checked before the output folder is claimed: the failed run leaves no run.json,
+// and the corrected command then runs into the same --out.
+TEST_F(BadRecording, TheCorrectedReplayRunsIntoTheSameFolder) {
+  const auto file = copyOfRecording(std::filesystem::file_size(recording()) - 20);
+  expectCleanFailure(replay(file), 2, out(), {file.string(), "truncated"});
+  EXPECT_FALSE(std::filesystem::exists(out() / "run.json"));
+  const auto r = replay(recording());
+  ASSERT_EQ(r.exitCode, 0) << r.stdErr;
+  for (const char* f : kResultFiles) EXPECT_TRUE(std::filesystem::exists(out() / f)) << f;
+}
+
 TEST_F(BadRecording, TruncatedInTheHeader) {
   const auto file = copyOfRecording(10);
   const auto r = replay(file);
