@@ -67,11 +67,13 @@ MergeSummary mergeRuns(const std::filesystem::path& outDir,
   // command line's overrides).
   if (!shards.empty() && shards.front().is_object() && shards.front().contains("culling"))
     meta["config"]["culling"] = shards.front()["culling"];
+  if (!shards.empty() && shards.front().is_object() && shards.front().contains("ground_truth"))
+    meta["config"]["ground_truth"] = shards.front()["ground_truth"];
   meta["summary"] = frameTotals(rows);
   meta["summary"]["cells"] = identity.plan.size();
   std::filesystem::create_directories(outDir);
-  writeRunOutputs(outDir, rows, meta);
-  return {identity.plan.size(), rows.size()};
+  auto tables = writeRunOutputs(outDir, rows, meta);
+  return {identity.plan.size(), rows.size(), std::move(tables)};
 }
 
 }  // namespace cdb

@@ -23,6 +23,7 @@ nlohmann::json shardMetaJson(const Shard& shard, const RunOptions& options,
       {"renderer", backend.renderer()},
       {"threads", visibility.threads}};
   j["culling"] = toJson(config.culling);
+  j["ground_truth"] = options.groundTruth;
   // GL is opened only by backends that need it; a run on the CPU backend records none.
   if (const HeadlessGlContext* gl = resources.openedGl()) j["gl"] = toJson(gl->info());
   j["wall_time"] = time.toJson();

@@ -4,6 +4,7 @@
 
 #include "harness/AtomicFile.h"
 #include "harness/FrameCsv.h"
+#include "harness/RunTables.h"
 
 namespace cdb {
 
@@ -20,13 +21,22 @@ nlohmann::json frameTotals(const std::vector<FrameRecord>& rows) {
           {"false_positives", falsePositives}};
 }
 
-void writeRunOutputs(const std::filesystem::path& dir, const std::vector<FrameRecord>& rows,
-                     const nlohmann::json& meta) {
+std::vector<Table> writeRunOutputs(const std::filesystem::path& dir,
+                                   const std::vector<FrameRecord>& rows, const nlohmann::json& meta) {
   std::ostringstream csv;
   writeFrameCsvHeader(csv);
   for (const auto& r : rows) writeFrameCsvRow(csv, r);
   writeFileAtomically(dir / "frames.csv", csv.str());
+
+  std::vector<Table> tables = runSummaryTables(rows, meta);
+  std::ostringstream md, summaryCsv;
+  MarkdownTableWriter().write(md, tables);
+  CsvTableWriter("statistic").write(summaryCsv, tables);
+  writeFileAtomically(dir / "summary.md", md.str());
+  writeFileAtomically(dir / "summary.csv", summaryCsv.str());
+
   writeFileAtomically(dir / "meta.json", meta.dump(2) + "\n");
+  return tables;
 }
 
 }  // namespace cdb

@@ -223,7 +223,7 @@ RunSummary runScenario(const RunOptions& options) {
 
   const auto rows = store.load(plan);
   const nlohmann::json meta = runMetaJson(shardMeta, options, config, configText, rows, plan.size());
-  writeRunOutputs(options.outDir, rows, meta);
+  summary.tables = writeRunOutputs(options.outDir, rows, meta);
   summary.frameRows = rows.size();
   summary.complete = true;
   summary.falseNegatives = meta["summary"]["false_negatives"].get<std::uint64_t>();

@@ -4,6 +4,7 @@
 // Each finished cell is kept on disk (see CellStore); when every cell of the run is there,
 // frames.csv and meta.json are written into the output folder.
 #include "harness/RunOptions.h"
+#include "harness/TableWriters.h"
 #include "harness/WallTimeBreakdown.h"
 #include "scenes/ScenarioConfig.h"
 
@@ -17,6 +18,7 @@ struct RunSummary {
   std::uint64_t falseNegatives = 0;
   std::uint64_t falsePositives = 0;
   WallTimeBreakdown time;  // this invocation's wall time, by where it went
+  std::vector<Table> tables;  // the whole run's average/maximum table (summary.md), once complete
 };
 
 // Thrown when SIGINT/SIGTERM stopped the run between frames; finished cells are kept.

@@ -17,6 +17,7 @@
 #include "harness/RunOptions.h"
 #include "harness/ScenarioRunner.h"
 #include "harness/StrategyListCsv.h"
+#include "harness/TableWriters.h"
 #include "render/HeadlessGlContext.h"
 #include "scenes/IntList.h"
 
@@ -118,7 +119,8 @@ int main(int argc, char** argv) {
                                         "worker threads of a CPU visibility backend (0 = every core)");
   runCmd->add_flag("--raw", raw, "raw rasterisation (no conservative widening): may miss contacts");
   runCmd->add_flag("--no-truth", noTruth, "skip the ground truth");
-  runCmd->add_flag("--quiet", run.quiet, "no progress on stderr");
+  runCmd->add_flag("--quiet", run.quiet,
+                   "no progress on stderr and no average/maximum table on stdout at the end");
   std::string shard;
   runCmd->add_option("--shard", shard, "run the i-th of n shares of the cells (i/n, 1-based)");
 
@@ -127,6 +129,8 @@ int main(int argc, char** argv) {
   auto* mergeCmd = app.add_subcommand("merge", "join the cells of shards into frames.csv and meta.json");
   mergeCmd->add_option("--out", mergeOut, "output folder")->required();
   mergeCmd->add_option("dirs", mergeDirs, "run folders of the shards")->required();
+  bool mergeQuiet = false;
+  mergeCmd->add_flag("--quiet", mergeQuiet, "no average/maximum table on stdout");
 
   cdb::CheckOptions check;
   auto* checkCmd = app.add_subcommand(
@@ -192,6 +196,7 @@ int main(int argc, char** argv) {
     }
     if (*mergeCmd) {
       const auto merged = cdb::mergeRuns(mergeOut, mergeDirs);
+      if (!mergeQuiet) cdb::ConsoleTableWriter().write(std::cout, merged.tables);
       std::fprintf(stderr, "merged %zu cells, %zu frame rows into %s\n", merged.cells,
                    merged.frameRows, mergeOut.c_str());
       return 0;
@@ -213,6 +218,11 @@ int main(int argc, char** argv) {
     for (int i = 0; i < argc; ++i) run.commandLine.emplace_back(argv[i]);
 
     const auto summary = cdb::runScenario(run);
+    // The run's table on stdout, as Google Benchmark's console reporter prints its own.
+    if (!run.quiet && summary.complete) {
+      cdb::ConsoleTableWriter().write(std::cout, summary.tables);
+      std::cout.flush();
+    }
     if (!run.quiet) std::fprintf(stderr, "time: %s\n", summary.time.summaryLine().c_str());
     if (summary.complete)
       std::fprintf(stderr, "wrote %zu frame rows to %s (%zu cells measured, %zu resumed; false negatives: %llu)\n",

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  libode-dev libeigen3-dev libassimp-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libgmp-dev
+  libode-dev libeigen3-dev libassimp-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgmp-dev
   libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri
   libfcl-dev libbullet-dev
   libhwy-dev libtbb-dev  # the CPU visibility backend: SIMD with runtime dispatch, worker threads

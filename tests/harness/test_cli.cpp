@@ -4,9 +4,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <regex>
 #include <string>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "harness/BuildCommit.h"
@@ -109,6 +112,65 @@ TEST(Cli, MetaNamesTheBuildCommitAndTheTreeTheRunStartedIn) {
   meta = metaOf(bare / "out");
   EXPECT_EQ(meta["machine"]["git_commit"], built);
   EXPECT_EQ(meta["machine"]["run_tree_commit"], "unknown");
+}
+
+// The average of a cell as the table computes it: the mean over repeats of each repeat's mean.
+double averageOf(const std::vector<cdb::FrameRecord>& rows, const std::string& strategy, int resolution) {
+  std::map<int, std::pair<double, int>> byRepeat;
+  for (const auto& r : rows)
+    if (r.strategy == strategy && r.resolution == resolution) {
+      byRepeat[r.repeat].first += r.cdMs;
+      ++byRepeat[r.repeat].second;
+    }
+  double sum = 0;
+  for (const auto& [repeat, s] : byRepeat) sum += s.first / s.second;
+  return sum / static_cast<double>(byRepeat.size());
+}
+
+// A run ends by printing its average/maximum table on stdout (rows = detectors, columns = the
+// resolutions, the false negatives, the backend), writes it as summary.md and summary.csv, and
+// measures what draws nothing once per simulation; --quiet prints nothing.
+TEST(Cli, ARunPrintsItsTableAndWritesItBesideTheFrames) {
+  const auto out = tempDir("table");
+  const std::string args = "run " + kConfigs + "env3.yaml --strategies cullide,ours,fcl --objects 20 "
+                           "--frames 4 --repeats 2 --resolutions 64,128 --out " + out.string();
+  const auto r = cdb::test::runShellCommand(std::string(CDBENCH_BINARY_DIR) + "/cdbench " + args +
+                                            " 2>/dev/null");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto rows = cdb::readFrameCsv(out / "frames.csv");
+  // fcl: one cell per simulation at no resolution, 4 frames each; the others 4 frames per
+  // resolution and simulation.
+  std::size_t fclRows = 0;
+  for (const auto& row : rows)
+    if (row.strategy == "fcl") {
+      ++fclRows;
+      EXPECT_EQ(row.resolution, 0);
+      EXPECT_EQ(row.visibility, "-");
+    }
+  EXPECT_EQ(fclRows, 2u * 4);
+  EXPECT_EQ(rows.size(), 2u * 4 * (2 * 2 + 1));
+
+  for (const char* title : {"env3: average CD time per frame (ms), 20 objects, cpu backend",
+                            "env3: maximum CD time per frame (ms), 20 objects, cpu backend",
+                            "strategy \\ resolution", "false negatives"})
+    EXPECT_NE(r.output.find(title), std::string::npos) << title << " not in:\n" << r.output;
+  // Each detector's average row, its numbers those of frames.csv; fcl's in both columns.
+  for (const std::string strategy : {"cullide", "ours", "fcl"}) {
+    const int at64 = strategy == "fcl" ? 0 : 64, at128 = strategy == "fcl" ? 0 : 128;
+    const std::regex row("\\n" + strategy + " +" + fmt::format("{:.2f}", averageOf(rows, strategy, at64)) +
+                         " +" + fmt::format("{:.2f}", averageOf(rows, strategy, at128)) + " +0\\n");
+    EXPECT_TRUE(std::regex_search(r.output, row)) << strategy << " row not in:\n" << r.output;
+  }
+  const std::string md = cdb::test::runShellCommand("cat " + (out / "summary.md").string()).output;
+  EXPECT_NE(md.find("| strategy \\ resolution | 64 | 128 | false negatives |"), std::string::npos) << md;
+  const std::string csv = cdb::test::runShellCommand("cat " + (out / "summary.csv").string()).output;
+  EXPECT_NE(csv.find("average,ours," + fmt::format("{:.4f}", averageOf(rows, "ours", 64))), std::string::npos)
+      << csv;
+
+  const auto quiet = cdb::test::runShellCommand(std::string(CDBENCH_BINARY_DIR) + "/cdbench " + args +
+                                                " --quiet 2>/dev/null");
+  ASSERT_EQ(quiet.exitCode, 0);
+  EXPECT_EQ(quiet.output, "");
 }
 
 TEST(Cli, MalformedConfigExitsTwoWithOneLine) {
