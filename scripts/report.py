@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Reproduction report: compares RESULT_DIR/env*/ (cdbench run outputs) with the thesis' Tables 4.1-4.3.
+"""Reproduction report: compares a `cdbench run --out` folder, or RESULT_DIR/env*/ (or RESULT_DIR/<backend>/env*/)
+of such folders, with the thesis' Tables 4.1-4.3.
 
-Usage: scripts/report.py RESULT_DIR [--thesis results/thesis/tables.csv]
+Usage: scripts/report.py RESULT_DIR [--thesis results/thesis/tables.csv] [--primary BACKEND]
 Runs on the system interpreter with Debian's python3-matplotlib; the code is the package scripts/report/.
 """
 

@@ -1,10 +1,11 @@
 """Command line: report.py RESULT_DIR [--thesis FILE] [--primary BACKEND] writes comparison tables,
 figures and REPORT.md.
 
-RESULT_DIR holds the environments directly (RESULT_DIR/envN/) or one folder per visibility backend
-(RESULT_DIR/<backend>/envN/). In the second layout every backend's environment folder gets its
-comparison.md and .csv (on the columns of the primary backend's tables), the primary backend's folders
-get the figures, and RESULT_DIR/REPORT.md holds the primary's tables and the backends side by side.
+RESULT_DIR is one run folder (what one `cdbench run --out RESULT_DIR` wrote), or holds the environments
+directly (RESULT_DIR/envN/), or one folder per visibility backend (RESULT_DIR/<backend>/envN/). In the
+last layout every backend's environment folder gets its comparison.md and .csv (on the columns of the
+primary backend's tables), the primary backend's folders get the figures, and RESULT_DIR/REPORT.md holds
+the primary's tables and the backends side by side.
 """
 
 import argparse
@@ -17,7 +18,8 @@ from .correctness import correctness_rows
 from .figures import draw_figures
 from .findings import analyse
 from .report_text import report_markdown
-from .runs import discover_environments, read_environment
+from .runs import (NO_RESOLUTION, REFERENCE_ROWS, cells_from_frames, discover_environments, is_run_folder,
+                   read_environment, run_environment)
 from .tabular import InputError
 from .thesis import DEFAULT_PATH, ThesisTables
 
@@ -25,9 +27,10 @@ from .thesis import DEFAULT_PATH, ThesisTables
 def parse_args(argv):
     p = argparse.ArgumentParser(
         prog="report.py",
-        description="Compare a reproduction run (RESULT_DIR/env1, env2, env3, each a `cdbench run` output, or "
-                    "RESULT_DIR/<backend>/envN for several visibility backends) with the thesis' Tables 4.1-4.3: "
-                    "writes <env>/comparison.md and .csv, the Chapter 4 figures as PNG, and RESULT_DIR/REPORT.md.")
+        description="Compare runs with the thesis' Tables 4.1-4.3. RESULT_DIR is one `cdbench run --out` folder, or "
+                    "holds RESULT_DIR/env1, env2, env3 (each a `cdbench run` output), or RESULT_DIR/<backend>/envN "
+                    "for several visibility backends: writes comparison.md and .csv beside each run's frames, the "
+                    "Chapter 4 figures as PNG, and RESULT_DIR/REPORT.md.")
     p.add_argument("result_dir", metavar="RESULT_DIR", type=Path)
     p.add_argument("--thesis", type=Path, default=DEFAULT_PATH, metavar="FILE",
                    help="the thesis' tables (default: results/thesis/tables.csv)")
@@ -43,13 +46,24 @@ def run(result_dir: Path, thesis_path: Path, primary: str = None):
     if not thesis_path.is_file():
         raise InputError(f"{thesis_path}: thesis tables not found")
     thesis = ThesisTables(thesis_path)
-    backends = discover_backends(result_dir)
-    primary = choose_primary(backends, primary)
     # Read every input before writing anything, so a malformed file leaves no half-written report.
-    folders = backends or [""]
-    names = discover_environments(result_dir) if not backends else _union(
-        discover_environments(result_dir / b) for b in backends)
-    runs = {b: {name: read_environment(result_dir, name, b) for name in names} for b in folders}
+    if is_run_folder(result_dir):
+        # One run's folder: its environment, reported where it lies.
+        if primary is not None:
+            raise InputError(f"--primary {primary}: {result_dir} is one run's folder, not one folder per backend")
+        backends, folders = [], [""]
+        names = [run_environment(result_dir)]
+        runs = {"": {names[0]: read_environment(result_dir, names[0], folder=result_dir)}}
+    else:
+        backends = discover_backends(result_dir)
+        primary = choose_primary(backends, primary)
+        folders = backends or [""]
+        names = discover_environments(result_dir) if not backends else _union(
+            discover_environments(result_dir / b) for b in backends)
+        runs = {b: {name: read_environment(result_dir, name, b) for name in names} for b in folders}
+        for name in names:
+            _share_reference_rows([runs[b][name] for b in [primary] + [f for f in folders if f != primary]
+                                   if b is not None])
     main = primary or ""
     sections, cost_models, others = [], [], []
     for name in names:
@@ -76,6 +90,50 @@ def run(result_dir: Path, thesis_path: Path, primary: str = None):
                    encoding="utf-8")
     tmp.replace(report)
     return report, sections + others
+
+
+def _share_reference_rows(env_runs):
+    """Reference rows (all_pairs and the CPU peers draw nothing, so no backend enters their numbers) measured
+    in one backend's run of an environment stand in another backend's run that lacks them, on the frames
+    that run measured: the same simulations (config text, seed and frames in meta.json; the ground truth's
+    pairs on every frame), each object count only where every frame of it is there. The lenders are tried in
+    the order given (the primary backend first)."""
+    ok = [r for r in env_runs if r.status == "ok" and r.frames]
+    for run in ok:
+        missing = [s for s in REFERENCE_ROWS if s not in {r["strategy"] for r in run.frames}]
+        if not missing:
+            continue
+        truth = {(r["objects"], r["repeat"], r["frame"]): r.get("truth_pairs") for r in run.frames}
+        counts = {k[0] for k in truth}
+        resolutions = {r["resolution"] for r in run.frames} | {NO_RESOLUTION}
+        for lender in ok:
+            if lender is run or not missing or not _same_simulations(run.meta, lender.meta):
+                continue
+            rows = [r for r in lender.frames if r["strategy"] in missing and r["resolution"] in resolutions
+                    and (r["objects"], r["repeat"], r["frame"]) in truth]
+            if any(truth[(r["objects"], r["repeat"], r["frame"])] != r.get("truth_pairs") for r in rows):
+                continue    # the same indices, other frames
+            taken = []
+            for strategy in [s for s in missing if any(r["strategy"] == s for r in rows)]:
+                mine = [r for r in rows if r["strategy"] == strategy]
+                covered = {(r["objects"], r["repeat"], r["frame"]) for r in mine}
+                whole = [n for n in counts if all(k in covered for k in truth if k[0] == n)]
+                mine = [r for r in mine if r["objects"] in whole]
+                if mine:
+                    run.frames.extend(dict(r) for r in mine)
+                    run.borrowed[strategy] = lender.backend_name
+                    taken.append(strategy)
+            if taken:
+                missing = [s for s in missing if s not in taken]
+                run.cells = cells_from_frames(run.frames)
+                run.notes.append(f"{', '.join(taken)}: the rows measured in the {lender.backend_name} run on the same "
+                                 f"frames (they draw nothing, so no backend enters their numbers)")
+
+
+def _same_simulations(a, b):
+    """Whether two runs' meta.json name the same simulations (where both name them)."""
+    ca, cb = a.get("config", {}), b.get("config", {})
+    return all(ca.get(k) == cb.get(k) for k in ("environment", "seed", "frames", "text") if k in ca and k in cb)
 
 
 def _section(env_run, cmp, thesis, figures):

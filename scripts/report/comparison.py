@@ -9,12 +9,17 @@ import csv
 import io
 from dataclasses import dataclass, field
 
-from .runs import STATISTICS, strategy_order
+from .runs import REFERENCE_ROWS, STATISTICS, strategy_order
 from .statistics import LEVEL, RESAMPLES, SEED, mean_estimate, mean_ratio_estimate, paired, ratio_estimate
 from .thesis import NAMED_WITHOUT_NUMBERS
 
 REFERENCE = "ours"                         # the thesis' approach, the denominator of every speedup
-RATIO_NUMERATORS = ("cullide", "cullide_bvh")   # the thesis' ratios; every other strategy run follows them
+RATIO_NUMERATORS = ("cullide", "cullide_bvh")   # the thesis' ratios; every other culling strategy run follows them
+# What the culling is worth: each culling strategy's CD time over that of no culling at all (every pair to the
+# exact phase) and of a CPU collision library on the same frames. Below 1 the culling pays.
+BASELINES = ("all_pairs", "fcl")
+BASELINE_WHAT = {"all_pairs": "no culling, every object pair to the exact phase",
+                 "fcl": "FCL, a CPU collision library, on the same frames"}
 NOT_IN_THESIS = "not in the thesis"
 AXIS_UNITS = {"resolution": "frame-buffer resolution (pixels, square)", "objects": "object count"}
 
@@ -57,6 +62,11 @@ class Comparison:
     ratio_mean_estimates: dict = field(default_factory=dict)  # ("average", numerator) -> Estimate
     maxima_at: dict = field(default_factory=dict)    # (strategy, column) -> (repeat, frame) of the maximum
     thesis_strategies: set = field(default_factory=set)   # strategies with numbers anywhere in the table
+    baselines: list = field(default_factory=list)    # BASELINES this run has
+    baseline_ratios: dict = field(default_factory=dict)   # (statistic, strategy, baseline, column) -> ratio
+    baseline_means: dict = field(default_factory=dict)    # (statistic, strategy, baseline) -> mean over columns
+    baseline_estimates: dict = field(default_factory=dict)   # (strategy, baseline, column) -> Estimate (average)
+    baseline_mean_estimates: dict = field(default_factory=dict)  # (strategy, baseline) -> Estimate (average)
 
     @property
     def ratio_rows(self):
@@ -68,6 +78,19 @@ class Comparison:
     @property
     def backend(self):
         return self.run.backend_name
+
+    @property
+    def culling_strategies(self):
+        """The strategies that cull (every one but the reference rows)."""
+        return [s for s in self.strategies if s not in REFERENCE_ROWS]
+
+    def baseline_mean(self, strategy, baseline):
+        """(value, Estimate or None) of strategy/baseline's average CD time, mean over the columns; value None
+        when no column has both."""
+        est = self.baseline_mean_estimates.get((strategy, baseline))
+        if est is not None:
+            return est.value, est
+        return self.baseline_means.get(("average", strategy, baseline)), None
 
     def in_thesis(self, strategy):
         """Whether the thesis' table has any number for this strategy, in any column (False without a table)."""
@@ -140,7 +163,8 @@ def build_comparison(run, thesis, like=None):
                 if value is not None:
                     cmp.thesis[(statistic, strategy, column)] = value
     thesis_numerators = [n for n in RATIO_NUMERATORS if n in cmp.strategies or cmp.in_thesis(n)]
-    cmp.numerators = thesis_numerators + [s for s in cmp.strategies
+    # The reference rows are set against the culling in their own table (BASELINES), not divided by ours.
+    cmp.numerators = thesis_numerators + [s for s in cmp.culling_strategies
                                           if s != REFERENCE and s not in thesis_numerators]
     for statistic in STATISTICS:
         for numerator in cmp.numerators:
@@ -155,7 +179,39 @@ def build_comparison(run, thesis, like=None):
                     thesis_values.append(pair[1])
             cmp.ratio_means[(statistic, numerator)] = (_mean(ours_values), _mean(thesis_values))
     _ratio_intervals(cmp, by_cell)
+    _baseline_ratios(cmp, by_cell)
     return cmp
+
+
+def _baseline_ratios(cmp, by_cell):
+    """Each culling strategy's CD time over each baseline's, per column and as the mean over columns; the
+    averages with paired intervals over the repeats both have."""
+    cmp.baselines = [b for b in BASELINES if b in cmp.strategies]
+    for baseline in cmp.baselines:
+        for strategy in cmp.culling_strategies:
+            for statistic in STATISTICS:
+                values = []
+                for column in cmp.layout.columns:
+                    top = cmp.ours.get((statistic, strategy, column))
+                    bottom = cmp.ours.get((statistic, baseline, column))
+                    if top is not None and bottom is not None and bottom > 0:
+                        cmp.baseline_ratios[(statistic, strategy, baseline, column)] = top / bottom
+                        values.append(top / bottom)
+                cmp.baseline_means[(statistic, strategy, baseline)] = _mean(values)
+            pairs = []
+            for column in cmp.layout.columns:
+                top = by_cell.get((strategy, *cmp.layout.cell(column)))
+                bottom = by_cell.get((baseline, *cmp.layout.cell(column)))
+                if top is None or bottom is None or not top.repeat_means or not bottom.repeat_means:
+                    continue
+                pair = paired(top.repeat_means, bottom.repeat_means)
+                est = ratio_estimate(*pair)
+                if est is not None:
+                    cmp.baseline_estimates[(strategy, baseline, column)] = est
+                    pairs.append(pair)
+            est = mean_ratio_estimate(pairs)
+            if est is not None:
+                cmp.baseline_mean_estimates[(strategy, baseline)] = est
 
 
 def _ratio_intervals(cmp, by_cell):
@@ -307,7 +363,43 @@ def comparison_markdown(cmp, level=2):
         out.append("")
     elif REFERENCE not in cmp.strategies:
         out.append(f"No speedup ratios: `{REFERENCE}` is not in this run.\n")
+    out += baseline_markdown(cmp, h)
     return "\n".join(out)
+
+
+def baseline_markdown(cmp, h):
+    """The table of what the culling is worth (strategy / all_pairs, strategy / fcl), or a line saying why
+    there is none."""
+    lay = cmp.layout
+    culling = cmp.culling_strategies
+    if not cmp.baselines or not culling:
+        missing = " and ".join(f"`{b}`" for b in BASELINES if b not in cmp.strategies)
+        return [f"No culling/baseline ratios: {missing or 'no culling strategy'} not in this run.\n"]
+    what = "; ".join(f"`{b}`: {BASELINE_WHAT[b]}" for b in cmp.baselines)
+    over = " and ".join(f"`{b}`'s" for b in cmp.baselines)
+    out = [f"{h} {cmp.run.name}: what the culling is worth: each strategy's CD time over {over} "
+           f"({what}; below 1: the culling pays; {NOT_IN_THESIS})\n"]
+    uniform = _uniform_reason(list(cmp.baseline_estimates.values()))
+    out.append(f"| ratio \\ {lay.axis} | " + " | ".join(str(c) for c in lay.columns) + " | mean over columns |")
+    out.append("|---|" + "---:|" * (len(lay.columns) + 1))
+    for baseline in cmp.baselines:
+        for statistic in STATISTICS:
+            for strategy in culling:
+                cells = []
+                for c in lay.columns + [None]:
+                    if c is None:
+                        value = cmp.baseline_means.get((statistic, strategy, baseline))
+                        est = cmp.baseline_mean_estimates.get((strategy, baseline)) if statistic == "average" else None
+                    else:
+                        value = cmp.baseline_ratios.get((statistic, strategy, baseline, c))
+                        est = cmp.baseline_estimates.get((strategy, baseline, c)) if statistic == "average" else None
+                    if est is not None:
+                        value = est.value
+                    interval = fmt_interval(est) if est is not None and not uniform else ""
+                    cells.append(_beside(value, None, fmt_ratio, interval))
+                out.append(f"| {strategy} / {baseline}, {statistic} | " + " | ".join(cells) + " |")
+    out.append("")
+    return out
 
 
 def _position_legend(cmp):
@@ -370,6 +462,17 @@ def comparison_csv(cmp):
             est = cmp.ratio_mean_estimates.get((statistic, numerator))
             w.writerow(row + [num(est.value if est else ours), num(theirs), *bounds(est),
                               (est.position(theirs) or "") if est else "", int(cmp.in_thesis(numerator))])
+    for baseline in cmp.baselines:
+        for statistic in STATISTICS:
+            for strategy in cmp.culling_strategies:
+                row = ["against_baseline", statistic, f"{strategy}/{baseline}", lay.axis, lay.fixed_value]
+                for c in lay.columns:
+                    est = cmp.baseline_estimates.get((strategy, baseline, c)) if statistic == "average" else None
+                    value = cmp.baseline_ratios.get((statistic, strategy, baseline, c))
+                    row += [num(est.value if est else value), "", *bounds(est), "", "", ""]
+                est = cmp.baseline_mean_estimates.get((strategy, baseline)) if statistic == "average" else None
+                value = cmp.baseline_means.get((statistic, strategy, baseline))
+                w.writerow(row + [num(est.value if est else value), "", *bounds(est), "", 0])
     return buf.getvalue()
 
 
@@ -394,7 +497,9 @@ def thesis_position_summary(cmp):
 
 def write_comparison(cmp):
     folder = cmp.run.folder
-    _write(folder / "comparison.md", f"# {cmp.run.name}: CD time, this run and the thesis\n\n" + comparison_markdown(cmp))
+    notes = "".join(f"- Note: {n}.\n" for n in cmp.run.notes) + ("\n" if cmp.run.notes else "")
+    _write(folder / "comparison.md", f"# {cmp.run.name}: CD time, this run and the thesis\n\n" + notes
+           + comparison_markdown(cmp))
     _write(folder / "comparison.csv", comparison_csv(cmp))
 
 

@@ -19,6 +19,8 @@ def correctness_rows(run):
     checked = run.meta.get("config", {}).get("ground_truth", True) is not False
     rows = []
     for strategy in run.strategies:
+        if strategy in run.borrowed:
+            continue    # checked in the run that measured it
         frames = [r for r in run.frames if r["strategy"] == strategy]
         if frames:
             fp = sum(r["false_positives"] for r in frames) if "false_positives" in frames[0] else None

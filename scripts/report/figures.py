@@ -12,7 +12,7 @@ from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch, Rectangle  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-from .runs import STATISTICS, describe_backend  # noqa: E402
+from .runs import STATISTICS, at_resolution, describe_backend  # noqa: E402
 from .thesis import THESIS_HARDWARE  # noqa: E402
 
 # The thesis' figure numbers per environment; another environment gets descriptive names.
@@ -87,13 +87,13 @@ def per_frame_slice(cmp):
         objects = lay.fixed_value
     else:
         resolution, objects = lay.fixed_value, max(lay.columns)
-    repeats = [r["repeat"] for r in cmp.run.frames if r["resolution"] == resolution and r["objects"] == objects]
+    repeats = [r["repeat"] for r in cmp.run.frames if at_resolution(r, resolution) and r["objects"] == objects]
     return resolution, objects, min(repeats) if repeats else 0
 
 
 def _frames_of(cmp, slice_, strategy):
     resolution, objects, repeat = slice_
-    rows = [r for r in cmp.run.frames if r["strategy"] == strategy and r["resolution"] == resolution
+    rows = [r for r in cmp.run.frames if r["strategy"] == strategy and at_resolution(r, resolution)
             and r["objects"] == objects and r["repeat"] == repeat]
     return sorted(rows, key=lambda r: r["frame"])
 
@@ -181,7 +181,7 @@ def _over_repeats(cmp, slice_, strategy):
     """(frames, mean, low, high, repeats): per frame, the mean and range of CD time over every repeat
     of the slice's cell that measured that frame; None when fewer than two repeats measured it."""
     resolution, objects, _ = slice_
-    rows = [r for r in cmp.run.frames if r["strategy"] == strategy and r["resolution"] == resolution
+    rows = [r for r in cmp.run.frames if r["strategy"] == strategy and at_resolution(r, resolution)
             and r["objects"] == objects]
     repeats = {r["repeat"] for r in rows}
     if len(repeats) < 2:

@@ -3,7 +3,7 @@
 from dataclasses import dataclass, field
 
 from .comparison import RATIO_NUMERATORS, REFERENCE, fmt_interval, not_in_thesis
-from .runs import STATISTICS, is_software_renderer, renderer_of
+from .runs import STATISTICS, at_resolution, is_software_renderer, renderer_of
 from .thesis import THESIS_HARDWARE
 
 CLOSE = 0.25            # a ratio within 25% of the thesis' counts as reproduced
@@ -211,7 +211,8 @@ def _run_only(cmp, f):
     if not frames:
         return
     lay = cmp.layout
-    in_slice = [r for r in frames if (r["objects"] if lay.axis == "resolution" else r["resolution"]) == lay.fixed_value]
+    in_slice = [r for r in frames if (r["objects"] == lay.fixed_value if lay.axis == "resolution"
+                                      else at_resolution(r, lay.fixed_value))]
     for s in ("ours", "cis"):
         sets = [r["sets"] for r in in_slice if r["strategy"] == s]
         if sets:

@@ -2,7 +2,7 @@
 and with several backends what depends on the cost model."""
 
 from .backends import counter_table, ratio_table, statements
-from .comparison import REFERENCE, comparison_markdown, thesis_position_summary
+from .comparison import BASELINES, REFERENCE, comparison_markdown, fmt_interval, thesis_position_summary
 from .findings import CLOSE, FALLING, RISING
 from .runs import backend_of, describe_backend, describe_machine, frames_file
 from .statistics import LEVEL, RESAMPLES, SEED
@@ -39,6 +39,7 @@ def report_markdown(result_dir, thesis_path, sections, others=(), cost_models=()
     if layout:
         out += _backends(result_dir, layout, sections, cost_models)
     out += _summary(sections, layout)
+    out += _culling_pays(sections, others, layout)
     out += _machines(everything)
     out += _correctness(everything, multi=bool(layout))
     for s in sections:
@@ -100,6 +101,71 @@ def _summary(sections, layout):
     out.append("- " + _correctness_sentence(sections))
     out.append("")
     return out
+
+
+BASELINE_NAMES = {"all_pairs": "`all_pairs` (no culling)", "fcl": "FCL"}
+
+
+def _culling_pays(sections, others, layout):
+    """One sentence per backend: whether the culling pays against all_pairs and against FCL, per environment,
+    with the best culling strategy's ratio."""
+    by_backend = {}
+    for s in list(sections) + list(others):
+        if s["run"].status == "ok" and s["comparison"] is not None:
+            by_backend.setdefault(s["comparison"].backend, []).append(s["comparison"])
+    if not by_backend:
+        return []
+    order = (layout["backends"] if layout else []) + sorted(set(by_backend) - set(layout["backends"] if layout else []))
+    out = ["## Does the culling pay?", ""]
+    out.append(f"Per environment, the culling strategy with the lowest average CD time relative to each baseline "
+               f"(its CD time over the baseline's on the same frames, mean over the table's columns [{LEVEL:.0%} "
+               f"interval]): below 1 the culling pays, above it the baseline is faster; \"level\" when the interval "
+               f"holds 1. {BASELINE_NAMES['all_pairs']} sends every object pair to the same exact phase; FCL is a CPU "
+               f"collision library. Neither is in the thesis.")
+    out.append("")
+    for backend in [b for b in order if b in by_backend]:
+        out.append(f"- **{backend}**: " + _verdict(by_backend[backend]))
+    out.append("")
+    return out
+
+
+def _verdict(comparisons):
+    parts = []
+    for baseline in BASELINES:
+        pays, level, loses = [], [], []
+        for cmp in comparisons:
+            best = None
+            for strategy in cmp.culling_strategies:
+                value, est = cmp.baseline_mean(strategy, baseline)
+                if value is not None and (best is None or value < best[1]):
+                    best = (strategy, value, est)
+            if best is None:
+                continue
+            strategy, value, est = best
+            interval = f" {fmt_interval(est)}" if est is not None and est.has_interval else ""
+            text = f"{cmp.run.name} ({strategy}/{baseline} {value:.2f}{interval})"
+            if est is not None and est.has_interval and est.lo <= 1 <= est.hi:
+                level.append(text)
+            else:
+                (pays if value < 1 else loses).append(text)
+        name = BASELINE_NAMES[baseline]
+        if not (pays or level or loses):
+            parts.append(f"no `{baseline}` rows to set the culling against")
+            continue
+        clauses = []
+        if pays:
+            clauses.append(f"pays in {_and(pays)}")
+        if level:
+            clauses.append(f"is level in {_and(level)}")
+        if loses:
+            clauses.append(f"does not pay in {_and(loses)}")
+        parts.append(f"against {name} the culling " + (", ".join(clauses[:-1]) + " but " + clauses[-1]
+                                                      if len(clauses) > 1 else clauses[0]))
+    return "; ".join(parts) + "."
+
+
+def _and(items):
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
 
 
 def _correctness_sentence(sections):
@@ -184,22 +250,23 @@ def _environment(s, result_dir, layout, cost_models):
                 ""]
         return out
     folder = run.folder.relative_to(result_dir).as_posix()
+    folder = "" if folder == "." else folder + "/"   # a run folder given as RESULT_DIR: its files lie beside REPORT.md
     for note in run.notes:
         out.append(f"- Note: {note}.")
     if cmp.layout.other_fixed_values:
         out.append(f"- Note: also run at {cmp.layout.fixed_dimension} "
                    f"{', '.join(map(str, cmp.layout.other_fixed_values))}; tabulated: {cmp.layout.describe_fixed()} "
-                   f"(all cells are in {folder}/{frames_file(run.folder).name}).")
+                   f"(all cells are in {folder}{frames_file(run.folder).name}).")
     if run.notes or cmp.layout.other_fixed_values:
         out.append("")
-    out += ["### Tables", "", f"Also in `{folder}/comparison.md` and `{folder}/comparison.csv`. "
+    out += ["### Tables", "", f"Also in `{folder}comparison.md` and `{folder}comparison.csv`. "
             + ("Cells: this run [95% interval] (thesis); blank = not measured." if cmp.table
                else "Blank = not measured."), ""]
     out.append(comparison_markdown(cmp, level=4))
     out += _inside_intervals(cmp)
     out += ["### Figures", ""]
     for fig in s["figures"]:
-        out += [f"**{fig.name}**: {fig.what}.", "", f"![{fig.title}]({folder}/{fig.name}.png)", ""]
+        out += [f"**{fig.name}**: {fig.what}.", "", f"![{fig.title}]({folder}{fig.name}.png)", ""]
     for name, reason in s["skipped"]:
         out += [f"**{name}** not drawn: {reason}.", ""]
     f = s["findings"]
@@ -246,6 +313,9 @@ def _cost_models(cost_models, layout):
             out.append(f"- {backend}: {STATUS_TEXT[why]}.")
         for backend, text in cm.coverage.items():
             out.append(f"- {backend}: {text} (measured on another backend).")
+        for backend, cmp in cm.comparisons.items():
+            if backend != layout["primary"]:
+                out += [f"- {backend}: {note}." for note in cmp.run.notes]
         if len(cm.backends) < 2:
             out += ["", f"Measured on {cm.backends[0]} only: nothing to set beside it.", ""]
             continue

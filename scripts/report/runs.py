@@ -5,7 +5,7 @@ writes no tables. A tables.csv, which runs made before that wrote, is read only 
 missing."""
 
 import json
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from .tabular import InputError, read_typed_csv
@@ -37,6 +37,12 @@ THESIS_ENVIRONMENTS = ("env1", "env2", "env3")
 # brute-force baseline.
 KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "quick_cullide", "sorted", "cis", "ours", "fcl", "bullet", "ode",
                         "all_pairs")
+# The rows that tell a reader what the culling is worth: detectors that cull nothing and draw nothing (the
+# registry's reference and CPU peers; tests/report/test_strategy_names.py holds this to `cdbench strategies`).
+# A run measures each once per simulation, at resolution NO_RESOLUTION, and the tables show it in every
+# resolution's column.
+REFERENCE_ROWS = ("all_pairs", "fcl", "bullet", "ode")
+NO_RESOLUTION = 0
 
 
 def strategy_order(names):
@@ -60,6 +66,7 @@ class Cell:
     repeat_means: dict = field(default_factory=dict)   # repeat -> mean CD time over its frames
     max_repeat: int = None
     max_frame: int = None
+    shared: bool = False       # a detector that draws nothing: the same cell stands in every resolution column
 
     @property
     def repeats(self):
@@ -77,6 +84,7 @@ class EnvironmentRun:
     cells: list = field(default_factory=list)    # list[Cell]
     meta: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)    # facts about the inputs a reader should know
+    borrowed: dict = field(default_factory=dict)  # reference row -> the backend whose run measured its frames
 
     @property
     def strategies(self):
@@ -98,9 +106,10 @@ def discover_environments(result_dir: Path):
     return list(THESIS_ENVIRONMENTS) + sorted(found - set(THESIS_ENVIRONMENTS))
 
 
-def read_environment(result_dir: Path, name: str, backend: str = "") -> EnvironmentRun:
-    """RESULT_DIR/name, or RESULT_DIR/backend/name when `backend` is given."""
-    folder = (result_dir / backend if backend else result_dir) / name
+def read_environment(result_dir: Path, name: str, backend: str = "", folder: Path = None) -> EnvironmentRun:
+    """RESULT_DIR/name, or RESULT_DIR/backend/name when `backend` is given, or `folder` itself (a run folder
+    given as RESULT_DIR)."""
+    folder = folder if folder is not None else (result_dir / backend if backend else result_dir) / name
     run = EnvironmentRun(name=name, folder=folder, status="ok", backend=backend)
     if not folder.is_dir():
         run.status = "missing"
@@ -112,6 +121,10 @@ def read_environment(result_dir: Path, name: str, backend: str = "") -> Environm
     if frames_csv.exists():
         run.frames = read_typed_csv(frames_csv, FRAME_REQUIRED, FRAME_INTS, FRAME_TIMES)
         run.cells = cells_from_frames(run.frames)
+        shared = strategy_order({c.strategy for c in run.cells if c.shared})
+        if shared and len({c.resolution for c in run.cells}) > 1:
+            run.notes.append(f"{', '.join(shared)} draw{'s' if len(shared) == 1 else ''} nothing: measured once per "
+                             f"simulation, the same numbers in every resolution's column")
     elif tables_csv.exists():
         run.cells = _read_table_cells(tables_csv)
         run.notes.append("frames.csv is missing: tables from tables.csv, no per-frame figures, "
@@ -162,6 +175,38 @@ def _progress(folder):
     return "" if (folder / "frames.csv.partial").exists() else None
 
 
+def is_run_folder(folder: Path):
+    """Whether `folder` is one `cdbench run --out` folder (its frames, meta.json or the run.json of a run
+    still going) rather than a folder of environments or backends."""
+    return any((folder / f).is_file() for f in ("frames.csv", "frames.csv.gz", "tables.csv", "meta.json", "run.json"))
+
+
+def run_environment(folder: Path):
+    """The environment a run folder measured: meta.json's, else run.json's, else its frames' first row's, else
+    the folder's name."""
+    for name, key in (("meta.json", ("config", "environment")), ("run.json", ("environment",))):
+        try:
+            value = json.loads((folder / name).read_text(encoding="utf-8"))
+            for k in key:
+                value = value[k]
+            if isinstance(value, str) and value:
+                return value
+        except (OSError, ValueError, KeyError, TypeError):
+            pass
+    frames = frames_file(folder)
+    if frames.exists():
+        rows = read_typed_csv(frames, ("environment",))
+        if rows:
+            return rows[0]["environment"]
+    return folder.resolve().name
+
+
+def at_resolution(row, resolution):
+    """Whether a frames.csv row belongs to the cells at `resolution`: its own, or none (a detector that draws
+    nothing stands in every resolution)."""
+    return row["resolution"] in (resolution, NO_RESOLUTION)
+
+
 def cells_from_frames(frames):
     groups = {}
     for r in frames:
@@ -176,7 +221,26 @@ def cells_from_frames(frames):
         peak = min(rows, key=lambda r: (-r["cd_ms"], r["repeat"], r["frame"]))
         cells.append(Cell(s, res, obj, sum(repeat_means.values()) / len(repeat_means), peak["cd_ms"], len(rows),
                           sum(r["false_negatives"] for r in rows), repeat_means, peak["repeat"], peak["frame"]))
-    return cells
+    return spread_over_resolutions(cells)
+
+
+def spread_over_resolutions(cells):
+    """Cells of detectors that draw nothing (resolution NO_RESOLUTION) copied into every resolution the run
+    measured at their object count (or, without any there, every resolution of the run), marked shared; left as
+    they are when the run measured no resolution at all."""
+    measured = [c for c in cells if c.resolution != NO_RESOLUTION]
+    every = sorted({c.resolution for c in measured})
+    out = list(measured)
+    for c in cells:
+        if c.resolution != NO_RESOLUTION:
+            continue
+        at_count = sorted({m.resolution for m in measured if m.objects == c.objects}) or every
+        if not at_count:
+            out.append(c)
+            continue
+        for res in at_count:
+            out.append(replace(c, resolution=res, shared=True))
+    return out
 
 
 def _read_table_cells(path):

@@ -3,6 +3,7 @@
 import csv
 import gzip
 import json
+import os
 import shutil
 import struct
 import subprocess
@@ -39,7 +40,8 @@ def frame_row(env, strategy, resolution, objects, repeat, frame, cd_ms, sets, fa
     values.update(environment=env, strategy=strategy, visibility=backend or BACKEND[env], resolution=resolution,
                   objects=objects, repeat=repeat, frame=frame, cd_ms=cd_ms, cull_ms=cd_ms * 0.75,
                   exact_ms=cd_ms * 0.25, sets=sets, false_negatives=false_negatives, truth_pairs=2,
-                  colliding_pairs=2, **counters)
+                  colliding_pairs=2)
+    values.update(counters)
     return [values[k] for k in FRAME_HEADER]
 
 
@@ -366,8 +368,12 @@ class ReportOnBackendFolders(unittest.TestCase):
         self.assertIn("| all_pairs (not in the thesis) |", md)
         self.assertIn("| quick_cullide / ours, average (not in the thesis) |", md)
         rows = read_csv_rows(self.dir / "cpu" / "env1" / "comparison.csv")
-        self.assertEqual(rows[("speedup", "average", "all_pairs/ours")]["500_thesis"], "")
-        self.assertEqual(rows[("speedup", "average", "all_pairs/ours")]["in_thesis"], "0")
+        self.assertEqual(rows[("speedup", "average", "quick_cullide/ours")]["500_thesis"], "")
+        self.assertEqual(rows[("speedup", "average", "quick_cullide/ours")]["in_thesis"], "0")
+        # all_pairs is set against the culling in its own table, not divided by ours.
+        self.assertNotIn(("speedup", "average", "all_pairs/ours"), rows)
+        self.assertAlmostEqual(float(rows[("against_baseline", "average", "ours/all_pairs")]["500"]),
+                               THESIS_AVG["ours"][500] / 30.0, places=3)
         # Quick-CULLIDE is named by the thesis, all_pairs is not: only the first is said to be compared against.
         self.assertIn("The thesis compares against Quick-CULLIDE (`quick_cullide`) in its text but gives no numbers "
                       "for it in any table.", md)
@@ -396,8 +402,9 @@ class ReportOnBackendFolders(unittest.TestCase):
                       "clear of 1: cpu 0 of 4, gl-queries 2 of 2.", self.cost)
 
     def test_cost_model_says_what_a_backend_lacks(self):
-        self.assertIn("- gl-queries: no quick_cullide, all_pairs; no resolution 600, 700 (measured on another "
-                      "backend).", self.cost)
+        # all_pairs is not missing: gl-queries takes cpu's rows of the same frames (it draws nothing).
+        self.assertIn("- gl-queries: no quick_cullide; no resolution 600, 700 (measured on another backend).",
+                      self.cost)
         self.assertIn("Not reported on cpu: no folder: this environment was not run. Measured on gl-queries",
                       self.report)
         self.assertIn("Measured on gl-queries only: nothing to set beside it.", self.cost)
@@ -530,6 +537,161 @@ class PackedResults(InFreshResultDir):
         self.assertNotEqual(result.returncode, 0)
         self.assertIn("env3 has no frames.csv", result.stderr)
         self.assertFalse(packed.exists())
+
+
+# Reference rows as a run writes them: what draws nothing at resolution 0, once per simulation. env1 at 500 and
+# 800 px, 2 repeats, frames 0..3, each cell's CD time constant (so every interval is a point): cullide 30 / 40 ms,
+# ours 8 / 20 ms; all_pairs 15, fcl 5, bullet 6, ode 7 ms. env3 at 800 px, 50 objects, one repeat: ours 1 ms,
+# all_pairs 0.5 ms, no fcl.
+REF_ENV1 = {"cullide": {500: 30.0, 800: 40.0}, "ours": {500: 8.0, 800: 20.0},
+            "all_pairs": {0: 15.0}, "fcl": {0: 5.0}, "bullet": {0: 6.0}, "ode": {0: 7.0}}
+REF_ENV3 = {"ours": {800: 1.0}, "all_pairs": {0: 0.5}}
+
+
+def reference_rows(env, bases, objects, repeats=(0, 1), frames=range(4), backend="cpu", truth_pairs=2):
+    rows = []
+    for s, by_res in bases.items():
+        for res, cd in by_res.items():
+            for r in repeats:
+                for f in frames:
+                    rows.append(frame_row(env, s, res, objects, r, f, cd, 2, backend=backend if res else "-",
+                                          truth_pairs=truth_pairs))
+    return rows
+
+
+class ReferenceRowsInEveryTable(InFreshResultDir):
+    """all_pairs, fcl, bullet and ode: in every column of every table, marked as not in the thesis, with each
+    culling strategy's CD time over all_pairs' and fcl's, and REPORT.md's verdict per backend."""
+
+    def setUp(self):
+        super().setUp()
+        write_run(self.dir / "env1", "env1", reference_rows("env1", REF_ENV1, 50), backend="cpu")
+        write_run(self.dir / "env3", "env3", reference_rows("env3", REF_ENV3, 50, repeats=(0,)), backend="cpu")
+        self.result = run_report(self.dir)
+        self.md = (self.dir / "env1" / "comparison.md").read_text()
+        self.report = (self.dir / "REPORT.md").read_text()
+
+    def test_reference_rows_stand_in_every_column_marked_not_in_the_thesis(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stderr)
+        for name, ms in (("all_pairs", 15), ("fcl", 5), ("bullet", 6), ("ode", 7)):
+            cell = f"{ms:.2f} [{ms:.2f}, {ms:.2f}]"
+            self.assertIn(f"| {name} (not in the thesis) | {cell} | {cell} |", self.md)
+        self.assertIn("fcl, bullet, ode, all_pairs draw nothing: measured once per simulation, the same numbers in "
+                      "every resolution's column", self.report)
+        rows = read_csv_rows(self.dir / "env1" / "comparison.csv")
+        self.assertEqual(rows[("cd_time_ms", "maximum", "fcl")]["800"], "5.0000")
+        self.assertEqual(rows[("cd_time_ms", "average", "ode")]["in_thesis"], "0")
+
+    def test_culling_over_all_pairs_and_fcl(self):
+        self.assertIn("| ours / all_pairs, average | 0.53 [0.53, 0.53] | 1.33 [1.33, 1.33] | 0.93 [0.93, 0.93] |",
+                      self.md)
+        self.assertIn("| cullide / fcl, average | 6.00 [6.00, 6.00] | 8.00 [8.00, 8.00] | 7.00 [7.00, 7.00] |", self.md)
+        self.assertIn("| ours / fcl, maximum | 1.60 | 4.00 | 2.80 |", self.md)
+        self.assertNotIn("| all_pairs / fcl", self.md)
+        rows = read_csv_rows(self.dir / "env1" / "comparison.csv")
+        self.assertAlmostEqual(float(rows[("against_baseline", "average", "ours/all_pairs")]["mean"]),
+                               (8 / 15 + 20 / 15) / 2, places=4)
+        self.assertAlmostEqual(float(rows[("against_baseline", "average", "cullide/fcl")]["800"]), 8.0, places=4)
+        # env3 has all_pairs but no fcl: one table, and the line saying what is missing.
+        env3 = (self.dir / "env3" / "comparison.md").read_text()
+        self.assertIn("| ours / all_pairs, average | 2.00 | 2.00 |", env3)
+
+    def test_report_says_per_backend_whether_the_culling_pays(self):
+        self.assertIn("- **cpu**: against `all_pairs` (no culling) the culling pays in env1 (ours/all_pairs 0.93 "
+                      "[0.93, 0.93]) but does not pay in env3 (ours/all_pairs 2.00); against FCL the culling does "
+                      "not pay in env1 (ours/fcl 2.80 [2.80, 2.80]).", self.report)
+
+
+class ReferenceRowsOfAnotherBackend(InFreshResultDir):
+    """A backend's run without the reference rows takes them from another backend's run of the same
+    simulations, on the frames it measured; not from a run of other frames."""
+
+    def write(self, gl_truth_pairs=2):
+        cpu = reference_rows("env1", REF_ENV1, 50)
+        # gl-flags: repeat 0 only, frames 0 and 2, at 500 px; cullide 3x faster there.
+        gl = reference_rows("env1", {"cullide": {500: 10.0}, "ours": {500: 8.0}}, 50, repeats=(0,), frames=(0, 2),
+                            backend="gl-flags", truth_pairs=gl_truth_pairs)
+        write_run(self.dir / "cpu" / "env1", "env1", cpu, backend="cpu")
+        write_run(self.dir / "gl-flags" / "env1", "env1", gl, backend="gl-flags")
+        return run_report(self.dir)
+
+    def test_the_same_frames_are_taken_from_the_primary(self):
+        result = self.write()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        md = (self.dir / "gl-flags" / "env1" / "comparison.md").read_text()
+        self.assertIn("| fcl (not in the thesis) | 5.00 |", md)
+        self.assertIn("| cullide / all_pairs, average | 0.67 | 0.67 |", md)
+        report = (self.dir / "REPORT.md").read_text()
+        self.assertIn("all_pairs, fcl, bullet, ode: the rows measured in the cpu run on the same frames", report)
+        self.assertIn("- **gl-flags**: against `all_pairs` (no culling) the culling pays in env1 (ours/all_pairs "
+                      "0.53)", report)
+        # Counted once, in the run that measured them.
+        self.assertNotIn("| env1 | gl-flags | fcl |", report)
+        self.assertIn("| env1 | cpu | fcl | 8 |", report)
+
+    def test_other_frames_are_not_taken(self):
+        result = self.write(gl_truth_pairs=3)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        md = (self.dir / "gl-flags" / "env1" / "comparison.md").read_text()
+        self.assertNotIn("| fcl", md)
+        self.assertIn("No culling/baseline ratios: `all_pairs` and `fcl` not in this run.", md)
+        self.assertIn("- **gl-flags**: no `all_pairs` rows to set the culling against; no `fcl` rows",
+                      (self.dir / "REPORT.md").read_text())
+
+
+class ReportOnOneRunFolder(InFreshResultDir):
+    """RESULT_DIR may be the folder one `cdbench run --out RUN` wrote: its tables, comparison and figures
+    are written beside its frames."""
+
+    def test_a_run_folder_is_reported_where_it_lies(self):
+        run = self.dir
+        write_run(run, "env3", reference_rows("env3", {"cullide": {256: 4.0}, "ours": {256: 2.0}, "fcl": {0: 0.5}},
+                                             50), backend="cpu")
+        (run / "cells").mkdir()
+        (run / "run.json").write_text('{"environment": "env3", "plan": []}')
+        result = run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("env3: 3 strategies", result.stdout)
+        md = (run / "comparison.md").read_text()
+        self.assertIn("| cullide | 4.00 [4.00, 4.00] |", md)
+        self.assertIn("| fcl (not in the thesis) | 0.50 [0.50, 0.50] |", md)
+        self.assertIn("| ours / fcl, average | 4.00 [4.00, 4.00] | 4.00 [4.00, 4.00] |", md)
+        report = (run / "REPORT.md").read_text()
+        self.assertIn("](fig_4_11.png)", report)
+        self.assertTrue((run / "fig_4_11.png").is_file())
+        self.assertNotIn("env1", report.split("## Machine")[0])
+        self.assertIn("--primary", run_report(run, "--primary", "cpu").stderr)
+
+    def test_an_unfinished_run_folder_says_how_far_it_got(self):
+        (self.dir / "cells").mkdir(parents=True)
+        (self.dir / "cells" / "o50_r0_ours_256.csv").write_text("")
+        (self.dir / "run.json").write_text('{"environment": "env3", "plan": ["a", "b"]}')
+        result = run_report(self.dir)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("env3: incomplete", result.stdout)
+        self.assertIn("1 of 2 cells finished", (self.dir / "REPORT.md").read_text())
+
+
+class ReportOnARealRun(InFreshResultDir):
+    """The README's first run, made by the binary ctest built, then reported."""
+
+    def test_the_readmes_run_is_reported(self):
+        binary = os.environ.get("CDBENCH_BINARY")
+        if not binary:
+            self.skipTest("CDBENCH_BINARY names no cdbench binary (ctest sets it to the one built)")
+        made = subprocess.run([binary, "run", str(ROOT / "configs" / "env3.yaml"), "--objects", "50", "--frames", "10",
+                               "--resolutions", "256", "--strategies", "cullide,ours,fcl", "--out", str(self.dir)],
+                              capture_output=True, text=True, timeout=300)
+        self.assertEqual(made.returncode, 0, made.stderr)
+        for name in ("cullide", "ours", "fcl"):
+            self.assertRegex(made.stdout, rf"\n{name} +[0-9]+\.[0-9]{{2}} +0\n")
+        result = run_report(self.dir)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        md = (self.dir / "comparison.md").read_text()
+        for row in ("| cullide | ", "| ours | ", "| fcl (not in the thesis) | ", "| ours / fcl, average | "):
+            self.assertIn(row, md)
+        self.assertTrue((self.dir / "comparison.csv").is_file())
+        self.assertTrue((self.dir / "REPORT.md").is_file())
 
 
 class ReportOnBadInput(InFreshResultDir):

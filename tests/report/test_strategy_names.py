@@ -35,6 +35,11 @@ class StrategyNamesFollowTheRegistry(unittest.TestCase):
         self.assertEqual(sorted(figures.COLOURS), sorted(names))
         self.assertEqual(len(set(figures.COLOURS.values())), len(figures.COLOURS))
 
+    def test_reference_rows_are_what_culls_nothing(self):
+        # The rows set against the culling: the registry's reference and its CPU peers, nothing else.
+        names = {r["name"] for r in registered() if r["kind"] in ("reference", "cpu-peer")}
+        self.assertEqual(set(runs.REFERENCE_ROWS), names)
+
     def test_kinds_are_the_registry_kinds(self):
         self.assertEqual({r["kind"] for r in registered()} - {"image-based", "reference", "cpu-peer"}, set())
 
