@@ -7,9 +7,10 @@
 #                        [--env env1,env3] [--no-build] [--no-report]
 #
 # Every profile runs every strategy of the configs (the thesis' three and quick_cullide) at every
-# resolution (500..1200) and object count (50..200) of the thesis, with the ground truth on every
-# measured frame, on the primary backend (default: cpu, the fastest where no GPU is at hand; see
-# README "Visibility backends"):
+# resolution (500..1200) and object count (50..200) of the thesis, and the configs' reference rows
+# (all_pairs, fcl, bullet, ode: they draw nothing, so once per simulation, not per resolution), with
+# the ground truth on every measured frame, on the primary backend (default: cpu, the fastest where
+# no GPU is at hand; see README "Visibility backends"):
 #   quick (default): one simulation per cell group, every 10th frame (30 frames spread over each
 #     simulation). Within 15 minutes on 2 cores, build included.
 #   standard: the thesis' 10 simulations per cell group, every 5th frame (60 frames each), for the
@@ -18,7 +19,9 @@
 #     (gl-flags: env1 at 500 px and env3 at 50 and 125 objects, every 15th frame; gl-queries, whose
 #     occlusion queries cost ~15 us each on llvmpipe: env1 at 500 px and env3 at 50 and 100
 #     objects, every 30th frame), on the same simulations (same seeds), for the report's "what
-#     depends on the cost model". Within 90 minutes on 2 cores, build included.
+#     depends on the cost model". The other backends' runs leave the reference rows out: the report
+#     takes them from the primary's run of the same simulations and frames. Within 90 minutes on 2
+#     cores, build included.
 #   full: the thesis' protocol, 10 simulations, every frame (split it into shards on a cluster:
 #     README "Beyond one machine").
 # Each environment's cells are split into --jobs shares (default: the number of cores) run at
@@ -115,12 +118,15 @@ if [[ $profile == standard ]]; then
       echo "reproduce: $backend does not start here; its subset is left out" >&2
       continue
     fi
+    # The configs' culling strategies only: the reference rows draw nothing, and the report takes
+    # the primary's rows of these frames (its stride divides these strides, its repeats hold these).
+    culling=(--strategies cullide,cullide_bvh,quick_cullide,ours)
     if [[ $backend == gl-flags ]]; then
-      run gl-flags env1 --repeats 2 --frame-stride 15 --resolutions 500
-      run gl-flags env3 --repeats 2 --frame-stride 15 --objects 50,125
+      run gl-flags env1 --repeats 2 --frame-stride 15 --resolutions 500 "${culling[@]}"
+      run gl-flags env3 --repeats 2 --frame-stride 15 --objects 50,125 "${culling[@]}"
     else
-      run gl-queries env1 --repeats 2 --frame-stride 30 --resolutions 500
-      run gl-queries env3 --repeats 2 --frame-stride 30 --objects 50,100
+      run gl-queries env1 --repeats 2 --frame-stride 30 --resolutions 500 "${culling[@]}"
+      run gl-queries env3 --repeats 2 --frame-stride 30 --objects 50,100 "${culling[@]}"
     fi
   done
 fi
