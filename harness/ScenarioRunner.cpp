@@ -171,6 +171,7 @@ RunSummary runScenario(const RunOptions& options) {
   }
   store.checkFinished(plan);
 
+  installInterruptHandlers();
   CellFrames frames(config, options, store, assetSearchPath(options.assetDirs), *backend,
                     summary.time);
   if (!todo.empty()) frames.prepare(todo.front());
@@ -178,7 +179,6 @@ RunSummary runScenario(const RunOptions& options) {
 
   DetectorOptions strategyOptions;
   strategyOptions.culling = config.culling;
-  installInterruptHandlers();
   ProgressBar progress(todo.size(),
                        static_cast<std::size_t>((config.dynamics.frames + options.frameStride - 1) /
                                                 options.frameStride),
