@@ -130,6 +130,8 @@ def _culling_pays(sections, others, layout):
 
 
 def _verdict(comparisons):
+    if not any(cmp.baselines and cmp.culling_strategies for cmp in comparisons):
+        return f"no {' or '.join(f'`{b}`' for b in BASELINES)} rows to set the culling against."
     parts = []
     for baseline in BASELINES:
         pays, level, loses = [], [], []

@@ -635,7 +635,7 @@ class ReferenceRowsOfAnotherBackend(InFreshResultDir):
         md = (self.dir / "gl-flags" / "env1" / "comparison.md").read_text()
         self.assertNotIn("| fcl", md)
         self.assertIn("No culling/baseline ratios: `all_pairs` and `fcl` not in this run.", md)
-        self.assertIn("- **gl-flags**: no `all_pairs` rows to set the culling against; no `fcl` rows",
+        self.assertIn("- **gl-flags**: no `all_pairs` or `fcl` rows to set the culling against.",
                       (self.dir / "REPORT.md").read_text())
 
 
