@@ -4,6 +4,8 @@
 //
 //   cull/<env>/<strategy>/<backend>/res:<r>/manual_time   a strategy's cull() of the frame on a
 //                                             visibility backend (backend "-" for the CPU peers)
+//   cpu_tiles/env3/<strategy>/<evaluation>/threads:<n>/manual_time   the cpu backend's tile sizes,
+//                                             plain evaluation and threads (800 px)
 //   floor/<env>/<strategy>/<backend>/res:<r>/real_time   that cull's backend work replayed bare
 //   exact/<env>/ours_sets                     the exact phase on the sets `ours` leaves (800)
 //   exact/<env>/all_pairs_sets                   the exact phase on one set of every object

@@ -5,6 +5,12 @@
 // detectors by themselves that use no backend (backend "-"), it is their whole collision
 // detection and the resolution changes nothing.
 //
+//
+// cpu_tiles/env3/<strategy>/<evaluation>/threads:<n>/manual_time: the same on the cpu backend at
+// 800 px for ours and cullide, evaluated on demand in tiles of 16, 32 or 64 pixels (tile:<t>) or
+// plainly (plain: every write rasterised, every test tested, one tile), at 1 and 2 threads: what
+// the tile size and the threads change, with the tile counters.
+//
 // Set-up per run of the benchmark function, untimed: the backend, its warm-up at the resolution
 // (shader variants, framebuffer), the detector's attach (hierarchies) and one detection of the
 // frame: strategies keep state from frame to frame (ours keeps its sorted lists) and the first cull
@@ -16,20 +22,35 @@
 #include "bench/BenchmarkSuite.h"
 #include "culling/exact/ExactPhase.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
+#include "culling/visibility/cpu/CpuRasterBackend.h"
 #include "harness/BackendWarmUp.h"
 
 namespace cdb::bench {
 
 namespace {
 
+// How a cpu backend evaluates (cpu_tiles/...), or nothing to change.
+struct CpuSetting {
+  bool given = false;
+  CpuEvaluation evaluation;
+  int threads = 1;
+};
+
 void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
                        const std::string& environment, const std::string& strategyName,
-                       const std::string& backendName, int resolution) {
+                       const std::string& backendName, int resolution, const CpuSetting& cpu = {}) {
   const RecordedScene& recorded = frames.recorded(environment);
   const auto poses = frames.poses(environment);
   const int frame = frames.measured(environment).frame;
   const auto backend = warmedUpBackend(frames.resources(), backendName, recorded.config.culling,
                                        recorded.scene, poses, resolution);
+  if (cpu.given) {
+    auto& rasteriser = dynamic_cast<CpuRasterBackend&>(*backend);
+    VisibilityOptions options;
+    options.threads = cpu.threads;
+    rasteriser.setOptions(options);
+    rasteriser.setEvaluation(cpu.evaluation);
+  }
   ExactPhase exact(recorded.scene);
   auto detector = DetectorRegistry::builtin().createDetector(
       strategyName, DetectorOptions{resolution, recorded.config.culling}, *backend, exact);
@@ -55,6 +76,11 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
   state.counters["triangles"] = perIteration(double(total.visibility.trianglesDrawn));
   state.counters["pixels_tested"] = perIteration(double(total.visibility.pixelsTested));
   state.counters["pixels_written"] = perIteration(double(total.visibility.pixelsWritten));
+  state.counters["tile_tests"] = perIteration(double(total.visibility.tileTests));
+  state.counters["tile_tests_by_bounds"] = perIteration(double(total.visibility.tileTestsByBounds));
+  state.counters["tile_tests_skipped"] = perIteration(double(total.visibility.tileTestsSkipped));
+  state.counters["tile_writes"] = perIteration(double(total.visibility.tileWrites));
+  state.counters["tile_writes_drawn"] = perIteration(double(total.visibility.tileWritesRasterised));
   state.counters["sets"] = perIteration(double(total.sets));
   state.counters["pcs_objects"] = perIteration(double(total.pcsSize));
   state.counters["pcs_triangles"] = perIteration(double(total.pcsTriangles));
@@ -84,6 +110,26 @@ void registerCullBenchmarks(RecordedFrames& frames) {
               ->UseManualTime();
         }
     }
+  // The cpu backend's evaluation: tile sizes, the plain evaluation, threads (env3, 800 px).
+  struct Evaluation {
+    std::string name;
+    CpuEvaluation evaluation;
+  };
+  const Evaluation evaluations[] = {{"plain", {0, false, false}},
+                                    {"tile:16", {16, true, true}},
+                                    {"tile:32", {32, true, true}},
+                                    {"tile:64", {64, true, true}}};
+  for (const std::string strategy : {"ours", "cullide"})
+    for (const Evaluation& e : evaluations)
+      for (int threads : {1, 2}) {
+        const CpuSetting cpu{true, e.evaluation, threads};
+        registerMilliseconds("cpu_tiles/env3/" + strategy + "/" + e.name + "/threads:" +
+                                 std::to_string(threads),
+                             [&frames, strategy, cpu](benchmark::State& state) {
+                               cullMeasuredFrame(state, frames, "env3", strategy, "cpu", 800, cpu);
+                             })
+            ->UseManualTime();
+      }
 }
 
 }  // namespace cdb::bench

@@ -37,6 +37,11 @@ FrameRecord frameRecordOf(const Cell& cell, const CellFrames& frames, const std:
   r.trianglesDrawn = counters.visibility.trianglesDrawn;
   r.pixelsTested = counters.visibility.pixelsTested;
   r.pixelsWritten = counters.visibility.pixelsWritten;
+  r.tileTests = counters.visibility.tileTests;
+  r.tileTestsByBounds = counters.visibility.tileTestsByBounds;
+  r.tileTestsSkipped = counters.visibility.tileTestsSkipped;
+  r.tileWrites = counters.visibility.tileWrites;
+  r.tileWritesDrawn = counters.visibility.tileWritesRasterised;
   return r;
 }
 

@@ -38,6 +38,11 @@ struct FrameRecord {
   std::uint64_t trianglesDrawn = 0;
   std::uint64_t pixelsTested = 0;
   std::uint64_t pixelsWritten = 0;
+  std::uint64_t tileTests = 0;
+  std::uint64_t tileTestsByBounds = 0;
+  std::uint64_t tileTestsSkipped = 0;
+  std::uint64_t tileWrites = 0;
+  std::uint64_t tileWritesDrawn = 0;
 };
 
 // The member a column holds, of one of the types a column can have.
@@ -87,6 +92,17 @@ inline constexpr std::array kFrameColumns = {
                 "pixels rasterised by the backend's tests (0 where it does not count)"},
     FrameColumn{"pixels_written", &FrameRecord::pixelsWritten,
                 "pixels rasterised by the backend's depth writes (0 where it does not count)"},
+    FrameColumn{"tile_tests", &FrameRecord::tileTests,
+                "tests of a piece (a chunk of triangles, a box) in a screen tile it may reach "
+                "(backends evaluating tiles: cpu; 0 elsewhere)"},
+    FrameColumn{"tile_tests_by_bounds", &FrameRecord::tileTestsByBounds,
+                "of tile_tests, decided by bounds without a pixel"},
+    FrameColumn{"tile_tests_skipped", &FrameRecord::tileTestsSkipped,
+                "of tile_tests, skipped: another tile had found the piece occluded"},
+    FrameColumn{"tile_writes", &FrameRecord::tileWrites,
+                "depth writes of a piece in a screen tile it may reach (cpu; 0 elsewhere)"},
+    FrameColumn{"tile_writes_drawn", &FrameRecord::tileWritesDrawn,
+                "of tile_writes, rasterised (some test in the tile read them); the rest never were"},
 };
 
 // How a column's text reads: "string", "int" (signed or not) or "double".

@@ -1,6 +1,7 @@
 """REPORT.md: machine and GL, correctness, the comparison tables, figures and findings per environment,
 and with several backends what depends on the cost model."""
 
+from .backend_work import work_markdown
 from .backends import counter_table, ratio_table, statements
 from .comparison import BASELINES, REFERENCE, comparison_markdown, fmt_interval, thesis_position_summary
 from .findings import CLOSE, FALLING, RISING
@@ -271,6 +272,9 @@ def _environment(s, result_dir, layout, cost_models):
         out += [f"**{fig.name}**: {fig.what}.", "", f"![{fig.title}]({folder}{fig.name}.png)", ""]
     for name, reason in s["skipped"]:
         out += [f"**{name}** not drawn: {reason}.", ""]
+    work = work_markdown(run, cmp.layout, max(cmp.layout.columns)) if cmp.layout.columns else []
+    if work:
+        out += ["### Work of the visibility backend", ""] + work
     f = s["findings"]
     out += ["### Against the thesis", ""]
     out += ["Agrees:", ""] + ([f"- {x}" for x in f.agrees] or ["- nothing that could be compared"]) + [""]

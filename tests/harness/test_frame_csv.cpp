@@ -63,12 +63,14 @@ TEST(FrameColumns, NamesAreUniqueAndNoTwoColumnsShareAMember) {
   EXPECT_EQ(values.size(), kFrameColumns.size());
 }
 
-// The header of the files already under results/.
+// The header of the files under results/ (those written before the tile counters lack the last
+// five columns).
 constexpr const char* kHeader =
     "environment,strategy,visibility,resolution,objects,repeat,frame,cd_ms,cull_ms,exact_ms,"
     "pcs_size,sets,pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,"
     "false_negatives,false_positives,culling_misses,queries,draws,triangles_drawn,"
-    "pixels_tested,pixels_written\n";
+    "pixels_tested,pixels_written,tile_tests,tile_tests_by_bounds,tile_tests_skipped,tile_writes,"
+    "tile_writes_drawn\n";
 
 TEST(FrameCsv, HeaderIsTheOneOfTheResultsAlreadyWritten) {
   std::ostringstream out;
@@ -81,7 +83,8 @@ TEST(FrameCsv, ReadsEachColumnIntoItsMember) {
   {
     std::ofstream out(file);
     out << kHeader
-        << "env9,cis,cpu,1,2,3,4,5.5,6.5,7.5,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22\n";
+        << "env9,cis,cpu,1,2,3,4,5.5,6.5,7.5,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23,24,25,"
+           "26,27\n";
   }
   const auto rows = readFrameCsv(file);
   ASSERT_EQ(rows.size(), 1u);
@@ -110,7 +113,12 @@ TEST(FrameCsv, ReadsEachColumnIntoItsMember) {
                              .draws = 19,
                              .trianglesDrawn = 20,
                              .pixelsTested = 21,
-                             .pixelsWritten = 22};
+                             .pixelsWritten = 22,
+                             .tileTests = 23,
+                             .tileTestsByBounds = 24,
+                             .tileTestsSkipped = 25,
+                             .tileWrites = 26,
+                             .tileWritesDrawn = 27};
   for (const auto& c : kFrameColumns)
     std::visit([&](auto member) { EXPECT_EQ(rows[0].*member, expected.*member) << c.name; },
                c.field);

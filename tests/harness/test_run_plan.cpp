@@ -152,7 +152,9 @@ TEST(RunPlan, DetectorsThatDrawNothingGetOneCellPerSimulation) {
   std::map<std::string, std::size_t> cells;
   for (const auto& cell : plan) {
     ++cells[cell.strategy];
-    if (cell.strategy != "cullide") EXPECT_EQ(cell.resolution, cdb::kNoResolution) << cell.key();
+    if (cell.strategy != "cullide") {
+      EXPECT_EQ(cell.resolution, cdb::kNoResolution) << cell.key();
+    }
   }
   EXPECT_EQ(cells["cullide"], 2u * 2u * 8u);
   for (const char* s : {"all_pairs", "fcl", "bullet", "ode"}) EXPECT_EQ(cells[s], 2u * 2u) << s;
