@@ -7,7 +7,7 @@
 //
 //
 // cpu_tiles/env3/<strategy>/<evaluation>/threads:<n>/manual_time: the same on the cpu backend at
-// 800 px for ours and cullide, evaluated on demand in tiles of 16, 32 or 64 pixels (tile:<t>) or
+// 800 px for ours, cullide and cullide_oi, evaluated on demand in tiles of 16, 32 or 64 pixels (tile:<t>) or
 // plainly (plain: every write rasterised, every test tested, one tile), at 1 and 2 threads: what
 // the tile size and the threads change, with the tile counters.
 //
@@ -101,6 +101,7 @@ void registerCullBenchmarks(RecordedFrames& frames) {
         for (int resolution : kResolutions) {
           const std::string runsOn =
               backend == "-" ? std::string(VisibilityBackendRegistry::kDefault) : backend;
+          if (!DetectorRegistry::builtin().runsOn(strategy, runsOn)) continue;
           registerMilliseconds(cellName("cull", m.environment, strategy, backend, resolution),
                                [&frames, environment = m.environment, strategy, runsOn,
                                 resolution](benchmark::State& state) {
@@ -119,7 +120,7 @@ void registerCullBenchmarks(RecordedFrames& frames) {
                                     {"tile:16", {16, true, true}},
                                     {"tile:32", {32, true, true}},
                                     {"tile:64", {64, true, true}}};
-  for (const std::string strategy : {"ours", "cullide"})
+  for (const std::string strategy : {"ours", "cullide", "cullide_oi"})
     for (const Evaluation& e : evaluations)
       for (int threads : {1, 2}) {
         const CpuSetting cpu{true, e.evaluation, threads};

@@ -46,7 +46,8 @@ void registerFloorBenchmarks(RecordedFrames& frames) {
       if (!DetectorRegistry::builtin().usesBackend(strategy)) continue;
       for (const std::string& backend : frames.backends())
         for (int resolution : kResolutions)
-          registerMilliseconds(cellName("floor", m.environment, strategy, backend, resolution),
+          if (DetectorRegistry::builtin().runsOn(strategy, backend))
+            registerMilliseconds(cellName("floor", m.environment, strategy, backend, resolution),
                                [&frames, environment = m.environment, strategy, backend,
                                 resolution](benchmark::State& state) {
                                  replayRecordedCull(state, frames, environment, strategy, backend,

@@ -4,6 +4,7 @@
 
 #include "core/Errors.h"
 #include "culling/ImageBasedDetector.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "culling/peers/BulletPeer.h"
 #include "culling/peers/FclPeer.h"
 #include "culling/peers/OdePeer.h"
@@ -13,6 +14,7 @@
 #include "culling/strategies/CullideWithHierarchy.h"
 #include "culling/strategies/DepthSortedCulling.h"
 #include "culling/strategies/HierarchicalCollisionIndependentSets.h"
+#include "culling/strategies/OrderIndependentCullide.h"
 #include "culling/strategies/QuickCullide.h"
 
 namespace cdb {
@@ -40,6 +42,11 @@ const DetectorRegistry& DetectorRegistry::builtin() {
     r.add("quick_cullide",
           "Quick-CULLIDE: CULLIDE's passes with each pass' answers kept, pairs freed by either pass",
           [](const DetectorOptions& o) { return std::make_unique<QuickCullide>(o); });
+    r.add("cullide_oi",
+          "CULLIDE's answer order-independently: per axis every piece written, then every piece "
+          "tested against the others' nearest depth (not in any paper)",
+          [](const DetectorOptions& o) { return std::make_unique<OrderIndependentCullide>(o); },
+          Kind::ImageBased, true);
     r.add("all_pairs", "reference: every object in one set, no culling; the exact phase alone",
           [](const DetectorOptions& o) { return std::make_unique<AllPairs>(o); }, Kind::Reference);
     r.addPeer("fcl", "CPU peer: FCL, dynamic AABB tree broad phase, OBBRSS mesh hierarchies",
@@ -54,9 +61,15 @@ const DetectorRegistry& DetectorRegistry::builtin() {
 }
 
 void DetectorRegistry::add(std::string name, std::string description, StrategyFactory factory,
-                           Kind kind) {
+                           Kind kind, bool orderIndependent) {
   if (kind == Kind::CpuPeer) throw std::logic_error("a CPU peer is added with addPeer");
-  entries_.push_back({std::move(name), std::move(description), std::move(factory), {}, kind});
+  entries_.push_back(
+      {std::move(name), std::move(description), std::move(factory), {}, kind, orderIndependent});
+}
+
+bool DetectorRegistry::runsOn(std::string_view name, std::string_view backend) const {
+  return !get(name).orderIndependent ||
+         VisibilityBackendRegistry::builtin().traits(backend).orderIndependent;
 }
 
 void DetectorRegistry::addPeer(std::string name, std::string description, PeerFactory factory) {

@@ -35,9 +35,10 @@ class DetectorRegistry {
   // CPU peer (a detector by itself: decides the colliding pairs, draws nothing).
   enum class Kind { ImageBased, Reference, CpuPeer };
 
-  // A culling strategy (kind ImageBased or Reference).
+  // A culling strategy (kind ImageBased or Reference); `orderIndependent`: its passes are
+  // DepthUse::OrderIndependent, so it runs only on backends that offer them.
   void add(std::string name, std::string description, StrategyFactory factory,
-           Kind kind = Kind::ImageBased);
+           Kind kind = Kind::ImageBased, bool orderIndependent = false);
   void addPeer(std::string name, std::string description, PeerFactory factory);
 
   // The detector `name` stands for, not yet attached: a CPU peer alone, or the culling strategy
@@ -62,6 +63,10 @@ class DetectorRegistry {
   [[nodiscard]] Kind kind(std::string_view name) const;
   // Whether its answer or time depends on the visibility backend and the resolution.
   [[nodiscard]] bool usesBackend(std::string_view name) const { return kind(name) == Kind::ImageBased; }
+  // Whether detector `name` runs on visibility backend `backend` (a registered name): every one but
+  // a strategy of order-independent passes on a backend without them. Throws InputError for an
+  // unknown name.
+  [[nodiscard]] bool runsOn(std::string_view name, std::string_view backend) const;
   // Throws InputError for the first unknown name.
   void validate(const std::vector<std::string>& names) const;
 
@@ -72,6 +77,7 @@ class DetectorRegistry {
     StrategyFactory strategy;  // set for ImageBased and Reference
     PeerFactory peer;          // set for CpuPeer
     Kind kind = Kind::ImageBased;
+    bool orderIndependent = false;
   };
   const Entry* find(std::string_view name) const;
   const Entry& get(std::string_view name) const;  // throws InputError for an unknown name

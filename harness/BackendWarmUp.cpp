@@ -21,18 +21,28 @@ void warmUpBackend(VisibilityBackend& backend, const SceneGeometry& scene,
   const std::uint32_t triangles = static_cast<std::uint32_t>(scene.meshOf(0).triangleCount());
   const std::vector<std::uint32_t> some = {0, triangles / 2};
   std::vector<std::uint8_t> answers;
-  for (DepthUse use : {DepthUse::Fresh, DepthUse::SharedFirst, DepthUse::SharedSecond}) {
-    backend.beginPass({Eigen::Vector3d::UnitX(), bounds, resolution}, use);
-    (void)backend.queryRange({0, 0, triangles});
-    (void)backend.queryRange({0, 0, 1});
-    (void)backend.queryBox(0, box);
+  std::vector<DepthUse> uses = {DepthUse::Fresh, DepthUse::SharedFirst, DepthUse::SharedSecond};
+  if (backend.supportsOrderIndependent()) uses.push_back(DepthUse::OrderIndependent);
+  const auto writes = [&] {
     backend.writeRange({0, 0, triangles});
     backend.writeTriangles(0, some);
     backend.writeBox(0, box);
+    backend.writeBoxes(0, std::span<const OrientedBox>(&box, 1));
+  };
+  const auto tests = [&] {
+    (void)backend.queryRange({0, 0, triangles});
+    (void)backend.queryRange({0, 0, 1});
+    (void)backend.queryBox(0, box);
     (void)backend.queryTriangles({0, 0, std::min<std::uint32_t>(triangles, 2)});
     (void)backend.queryTriangles(0, some);
     (void)backend.queryBoxes(0, std::span<const OrientedBox>(&box, 1));
-    backend.writeBoxes(0, std::span<const OrientedBox>(&box, 1));
+  };
+  for (DepthUse use : uses) {
+    backend.beginPass({Eigen::Vector3d::UnitX(), bounds, resolution}, use);
+    // Tests after writes in every kind of pass; before them too where the pass allows it.
+    if (use != DepthUse::OrderIndependent) tests();
+    writes();
+    tests();
   }
   backend.fetchResults(answers);
 }

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <chrono>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <sstream>
 
@@ -77,6 +78,22 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
     if (options.strategies) throw;
     throw InputError(options.configPath.string() + ": sweep.strategies: " + e.what());
   }
+  // A strategy of order-independent passes on a backend without them: refused when asked for by
+  // name, left out of the config's list with a note.
+  std::vector<std::string> runnable;
+  for (const std::string& name : config.sweep.strategies) {
+    if (DetectorRegistry::builtin().runsOn(name, visibility.backend)) {
+      runnable.push_back(name);
+      continue;
+    }
+    const std::string why = name + " needs order-independent passes, which the " +
+                            visibility.backend + " backend does not offer";
+    if (options.strategies) throw InputError("--strategies: " + why);
+    if (!options.quiet) std::cerr << "run: " << why << ": left out\n";
+  }
+  config.sweep.strategies = std::move(runnable);
+  if (config.sweep.strategies.empty())
+    throw InputError("no strategy of the run runs on the " + visibility.backend + " backend");
   for (int r : config.sweep.resolutions)
     if (r < 1 || r > 16384)
       throw InputError("resolution " + std::to_string(r) + ": expected 1..16384 pixels");

@@ -74,6 +74,7 @@ DepthPassSetup makeDepthPassSetup(const ViewSpec& view, DepthUse depth) {
 
   switch (depth) {
     case DepthUse::Fresh:
+    case DepthUse::OrderIndependent:
       s.depthNear = 0.0, s.depthFar = 1.0, s.clear = true, s.clearDepth = 1.0;
       break;
     case DepthUse::SharedFirst:

@@ -96,6 +96,8 @@ void GlVisibilityPipeline::checkRange(const MeshRange& range) const {
 }
 
 DepthPassSetup GlVisibilityPipeline::beginCheckedPass(const ViewSpec& view, DepthUse depth) {
+  if (depth == DepthUse::OrderIndependent)
+    throw InputError("this GL backend offers no order-independent pass (cullide_oi runs on cpu)");
   if (depth == DepthUse::SharedSecond &&
       (lastDepth_ != DepthUse::SharedFirst || lastResolution_ != view.resolution))
     throw RunError("a SharedSecond pass must follow a SharedFirst pass of the same resolution");

@@ -17,6 +17,9 @@ class RecordingBackend final : public VisibilityBackend {
   [[nodiscard]] std::string_view name() const override { return name_; }
   [[nodiscard]] std::string renderer() const override { return inner_.renderer(); }
   [[nodiscard]] int maxResolution() const override { return inner_.maxResolution(); }
+  [[nodiscard]] bool supportsOrderIndependent() const override {
+    return inner_.supportsOrderIndependent();
+  }
   void setOptions(const VisibilityOptions& options) override;
   void attachScene(const SceneGeometry& scene) override;
   void setPoses(std::span<const Pose> poses) override;

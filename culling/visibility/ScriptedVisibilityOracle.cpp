@@ -1,9 +1,13 @@
 #include "culling/visibility/ScriptedVisibilityOracle.h"
 
+#include "core/Errors.h"
+
 namespace cdb {
 
 void ScriptedVisibilityOracle::beginPass(const ViewSpec& view, DepthUse depth) {
   ++pass_;
+  depth_ = depth;
+  tested_ = false;
   VisibilityCall call = VisibilityCall::ofPass(view, depth);
   call.pass = pass_;
   log_.push_back(std::move(call));
@@ -18,7 +22,16 @@ void ScriptedVisibilityOracle::beginPass(const ViewSpec& view, DepthUse depth) {
 
 QueryIndex ScriptedVisibilityOracle::query(VisibilityCall call) {
   call.pass = pass_;
-  const bool visible = script_(call, passWrites_);
+  tested_ = true;
+  bool visible;
+  if (depth_ == DepthUse::OrderIndependent) {
+    std::vector<VisibilityCall> others;
+    for (const VisibilityCall& w : passWrites_)
+      if (w.object != call.object) others.push_back(w);
+    visible = script_(call, others);
+  } else {
+    visible = script_(call, passWrites_);
+  }
   log_.push_back(std::move(call));
   pending_.push_back(visible ? 1 : 0);
   ++counters_.queries;
@@ -27,6 +40,8 @@ QueryIndex ScriptedVisibilityOracle::query(VisibilityCall call) {
 }
 
 void ScriptedVisibilityOracle::write(VisibilityCall call) {
+  if (depth_ == DepthUse::OrderIndependent && tested_)
+    throw RunError("a write after a test in an order-independent pass");
   call.pass = pass_;
   log_.push_back(call);
   passWrites_.push_back(std::move(call));

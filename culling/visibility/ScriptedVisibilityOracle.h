@@ -13,12 +13,14 @@ namespace cdb {
 class ScriptedVisibilityOracle final : public VisibilityBackend {
  public:
   // Returns true when the queried piece is fully visible. `writtenSoFar` is every write of the
-  // current pass before the query, so a geometric script can decide from it.
+  // current pass before the query, so a geometric script can decide from it (in an
+  // OrderIndependent pass: every write of the pass by another object than the query's).
   using Script = std::function<bool(const VisibilityCall& query, std::span<const VisibilityCall> writtenSoFar)>;
 
   explicit ScriptedVisibilityOracle(Script script) : script_(std::move(script)) {}
 
   [[nodiscard]] std::string_view name() const override { return "scripted-oracle"; }
+  [[nodiscard]] bool supportsOrderIndependent() const override { return true; }
   void setOptions(const VisibilityOptions&) override {}
   void attachScene(const SceneGeometry& scene) override { scene_ = &scene; }
   void setPoses(std::span<const Pose> poses) override { poses_ = poses; }
@@ -48,6 +50,8 @@ class ScriptedVisibilityOracle final : public VisibilityBackend {
   std::vector<VisibilityCall> passWrites_;
   std::vector<std::uint8_t> pending_;
   int pass_ = -1;
+  DepthUse depth_ = DepthUse::Fresh;
+  bool tested_ = false;  // a test of the pass was issued
   VisibilityCounters counters_;
 };
 

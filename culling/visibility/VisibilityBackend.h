@@ -40,7 +40,14 @@ struct ViewSpec {
 //  SharedSecond: no clear, use the far half with the depth order reversed, so that nothing left
 //                by the SharedFirst pass occludes anything of this one: two passes, one clear
 //                (thesis 3.2).
-enum class DepthUse { Fresh, SharedFirst, SharedSecond };
+//  OrderIndependent: clear it, use the whole range; every pixel keeps the nearest depth written,
+//                the object that wrote it, and the nearest depth any other object wrote, and a
+//                test of object i is answered against the nearest depth written by every object
+//                but i. Every write of the pass comes before its first test. One such pass gives
+//                what CULLIDE's two passes give together (fully visible with respect to the
+//                pieces before it and to those after it), in any order (cullide_oi). Only
+//                backends whose supportsOrderIndependent() is true begin one.
+enum class DepthUse { Fresh, SharedFirst, SharedSecond, OrderIndependent };
 
 // Contiguous triangles [firstTriangle, firstTriangle + triangleCount) of an object's mesh.
 struct MeshRange {
@@ -123,6 +130,8 @@ class VisibilityBackend {
   [[nodiscard]] virtual std::string renderer() const { return std::string(name()); }
   // The largest frame-buffer side this backend renders at.
   [[nodiscard]] virtual int maxResolution() const { return 16384; }
+  // Whether beginPass takes DepthUse::OrderIndependent (InputError otherwise).
+  [[nodiscard]] virtual bool supportsOrderIndependent() const { return false; }
   virtual void setOptions(const VisibilityOptions& options) = 0;
 
   // Makes the scene's meshes resident (once per scene, not per frame).
@@ -130,7 +139,8 @@ class VisibilityBackend {
   // Poses of every object for the draws that follow (once per frame).
   virtual void setPoses(std::span<const Pose> poses) = 0;
 
-  // Starts a pass along `view`; see DepthUse.
+  // Starts a pass along `view`; see DepthUse. A write after a test in an OrderIndependent pass is
+  // a RunError.
   virtual void beginPass(const ViewSpec& view, DepthUse depth) = 0;
 
   // Fully-visible tests: drawn with depth writes off; the answer comes from fetchResults().

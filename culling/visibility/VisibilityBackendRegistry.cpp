@@ -29,7 +29,8 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           });
     r.add("cpu",
           "exact conservative CPU depth rasteriser (SIMD, threads); needs no GL",
-          {.needsGl = false}, [](BackendResources&, const VisibilityOptions& options) {
+          {.needsGl = false, .orderIndependent = true},
+          [](BackendResources&, const VisibilityOptions& options) {
             return std::make_unique<CpuRasterBackend>(options);
           });
     return r;

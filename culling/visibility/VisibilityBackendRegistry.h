@@ -17,6 +17,8 @@ namespace cdb {
 
 struct BackendTraits {
   bool needsGl = false;  // opens the headless GL context (EGL) of BackendResources
+  // Begins DepthUse::OrderIndependent passes (VisibilityBackend::supportsOrderIndependent).
+  bool orderIndependent = false;
 };
 
 class VisibilityBackendRegistry {

@@ -24,7 +24,8 @@ FIGURE_NAMES = {
 GENERIC_NAMES = {"sweep": "cd_time_sweep", "per_frame": "cd_time_per_frame", "sets": "sets_per_frame"}
 
 # One colour per strategy in every figure, so a reader matches lines across figures at a glance.
-COLOURS = {"cullide": "tab:red", "cullide_bvh": "tab:orange", "quick_cullide": "darkred", "sorted": "tab:purple",
+COLOURS = {"cullide": "tab:red", "cullide_bvh": "tab:orange", "quick_cullide": "darkred", "cullide_oi": "salmon",
+           "sorted": "tab:purple",
            "cis": "tab:green", "ours": "tab:blue", "fcl": "tab:brown", "bullet": "tab:pink", "ode": "tab:gray",
            "all_pairs": "black"}
 EXTRA_COLOURS = ["tab:olive", "tab:cyan", "black", "gold"]

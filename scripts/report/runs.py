@@ -36,7 +36,7 @@ THESIS_ENVIRONMENTS = ("env1", "env2", "env3")
 
 # A stable row order: the thesis' strategies in the order of its tables' narrative, then CPU peers, then the
 # brute-force baseline.
-KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "quick_cullide", "sorted", "cis", "ours", "fcl", "bullet", "ode",
+KNOWN_STRATEGY_ORDER = ("cullide", "cullide_bvh", "quick_cullide", "cullide_oi", "sorted", "cis", "ours", "fcl", "bullet", "ode",
                         "all_pairs")
 # The rows that tell a reader what the culling is worth: detectors that cull nothing and draw nothing (the
 # registry's reference and CPU peers; tests/report/test_strategy_names.py holds this to `cdbench strategies`).

@@ -186,8 +186,10 @@ std::vector<RecordedCase> recordedCases() {
   std::vector<RecordedCase> out;
   for (int f = 0; f < static_cast<int>(std::size(kFrames)); ++f)
     for (const auto& name : DetectorRegistry::builtin().names())
-      // The CPU peers are detectors by themselves: no culling strategy to record.
-      if (DetectorRegistry::builtin().kind(name) != DetectorRegistry::Kind::CpuPeer)
+      // The CPU peers are detectors by themselves: no culling strategy to record; a strategy is
+      // recorded on gl-queries, so it must run there.
+      if (DetectorRegistry::builtin().kind(name) != DetectorRegistry::Kind::CpuPeer &&
+          DetectorRegistry::builtin().runsOn(name, "gl-queries"))
         for (int resolution : {64, 256, 800})
           if (resolution < 800 || kFrames[f].scene.config != "env2.yaml")
             out.emplace_back(f, name, resolution);

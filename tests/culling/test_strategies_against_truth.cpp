@@ -129,6 +129,7 @@ std::vector<Param> allParams() {
     const bool peer = !DetectorRegistry::builtin().usesBackend(name);
     for (const auto& backend : VisibilityBackendRegistry::builtin().names()) {
       if (peer && backend != firstBackend) continue;
+      if (!DetectorRegistry::builtin().runsOn(name, backend)) continue;
       for (auto kind : {SceneKind::FewTori, SceneKind::Tori, SceneKind::ToriAndPlanes, SceneKind::Dragons})
         for (int res : {64, 256, 800})
           if (runsAt(peer, name, backend, kind, res)) out.emplace_back(name, backend, kind, res);

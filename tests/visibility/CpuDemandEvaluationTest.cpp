@@ -315,8 +315,9 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene) {
       for (OrientedBox& b : boxes) {
         b.center = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 0.4;
         b.axes = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
-        b.halfExtents = Eigen::Vector3d(0.02 + 0.2 * std::abs(u(rng)), 0.02 + 0.2 * std::abs(u(rng)),
-                                        pick(6) == 0 ? 0.0 : 0.02 + 0.2 * std::abs(u(rng)));
+        b.halfExtents =
+            Eigen::Vector3d(0.02 + 0.2 * std::abs(u(rng)), 0.02 + 0.2 * std::abs(u(rng)),
+                            pick(6) == 0 ? 0.0 : 0.02 + 0.2 * std::abs(u(rng)));
       }
       return boxes;
     };
@@ -325,16 +326,33 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene) {
         const auto o = static_cast<ObjectId>(pick(static_cast<int>(objects)));
         const auto triangles = static_cast<std::uint32_t>(scene.meshOf(o).triangleCount());
         const std::uint32_t first = static_cast<std::uint32_t>(pick(static_cast<int>(triangles)));
-        const MeshRange part{o, first, static_cast<std::uint32_t>(pick(static_cast<int>(triangles - first) + 1))};
+        const MeshRange part{
+            o, first, static_cast<std::uint32_t>(pick(static_cast<int>(triangles - first) + 1))};
         switch (pick(9)) {
-          case 0: backend.queryRange(test::wholeOf(scene, o)); break;
-          case 1: backend.queryRange(part); break;
-          case 2: backend.queryTriangles(part); break;
-          case 3: backend.queryTriangles(o, someTriangles(o)); break;
-          case 4: backend.queryBoxes(o, someBoxes()); break;
-          case 5: backend.writeRange(pick(2) ? test::wholeOf(scene, o) : part); break;
-          case 6: backend.writeTriangles(o, someTriangles(o)); break;
-          case 7: backend.writeBoxes(o, someBoxes()); break;
+          case 0:
+            backend.queryRange(test::wholeOf(scene, o));
+            break;
+          case 1:
+            backend.queryRange(part);
+            break;
+          case 2:
+            backend.queryTriangles(part);
+            break;
+          case 3:
+            backend.queryTriangles(o, someTriangles(o));
+            break;
+          case 4:
+            backend.queryBoxes(o, someBoxes());
+            break;
+          case 5:
+            backend.writeRange(pick(2) ? test::wholeOf(scene, o) : part);
+            break;
+          case 6:
+            backend.writeTriangles(o, someTriangles(o));
+            break;
+          case 7:
+            backend.writeBoxes(o, someBoxes());
+            break;
           default:  // a test and a write of the same object, as the strategies draw
             backend.queryRange(test::wholeOf(scene, o));
             backend.writeRange(test::wholeOf(scene, o));
@@ -342,8 +360,7 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene) {
       }
     };
     for (int round = 0; round < 8; ++round) {
-      const Eigen::Vector3d direction =
-          Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+      const Eigen::Vector3d direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
       const int resolution = resolutions[pick(4)];
       // Views holding every object, or a part (the rest off-screen, or clamped to the depth
       // range: pieces at equal keys).
@@ -378,10 +395,9 @@ TEST(CpuDemandEvaluation, RandomStreamsAnswerAsPlainEvaluation) {
     const SceneGeometry scene = randomScene(rng, 24);
     const std::vector<Pose> poses = posesAround(seed, scene.objectCount(), 0.8);
     for (bool conservative : {true, false}) {
-      SCOPED_TRACE(testing::Message() << (conservative ? "conservative" : "raw") << ", seed "
-                                      << seed);
-      expectBothAnswers(
-          expectSameAsPlain(scene, poses, randomStream(seed, scene), conservative));
+      SCOPED_TRACE(testing::Message()
+                   << (conservative ? "conservative" : "raw") << ", seed " << seed);
+      expectBothAnswers(expectSameAsPlain(scene, poses, randomStream(seed, scene), conservative));
     }
   }
 }
@@ -408,10 +424,9 @@ TEST(CpuDemandEvaluation, WorkWithoutEarlyOutDoesNotDependOnThreads) {
 // keys, and equal is occluded: in front of the near plane in a fresh pass, behind the far plane of
 // a SharedFirst pass (whose clear value lies beyond it). Their key bounds tie too.
 TEST(CpuDemandEvaluation, TiesAtTheEndsOfTheDepthRange) {
-  const SceneGeometry scene = test::sceneOf({test::squareMesh(0, 0, -5, 0.5f),
-                                             test::squareMesh(0.2f, 0, -4, 0.5f),
-                                             test::squareMesh(0, 0, 5, 0.5f),
-                                             test::squareMesh(0.2f, 0, 4, 0.5f)});
+  const SceneGeometry scene =
+      test::sceneOf({test::squareMesh(0, 0, -5, 0.5f), test::squareMesh(0.2f, 0, -4, 0.5f),
+                     test::squareMesh(0, 0, 5, 0.5f), test::squareMesh(0.2f, 0, 4, 0.5f)});
   const std::vector<Pose> poses(4);
   const Aabb bounds(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1));
   for (const DepthUse use : {DepthUse::Fresh, DepthUse::SharedFirst}) {

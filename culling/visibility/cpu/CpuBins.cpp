@@ -1,9 +1,9 @@
 #include "culling/visibility/cpu/CpuBins.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <tbb/parallel_for.h>
 
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
 #include "culling/visibility/cpu/CpuPieces.h"
@@ -17,8 +17,9 @@ namespace {
 std::uint32_t itemCount(const CpuCommand& c) {
   switch (c.source) {
     case CpuCommand::Source::Range:
-      return c.count == 0 ? 0
-                          : (c.first + c.count - 1) / kChunkTriangles - c.first / kChunkTriangles + 1;
+      return c.count == 0
+                 ? 0
+                 : (c.first + c.count - 1) / kChunkTriangles - c.first / kChunkTriangles + 1;
     case CpuCommand::Source::Listed:
       return (c.count + kChunkTriangles - 1) / kChunkTriangles;
     case CpuCommand::Source::Boxes:
@@ -98,7 +99,7 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
   const CpuCommand& c = recording.commands[ci];
   const RasterPass& raster = recording.passes[pass].raster;
   CpuItem base;
-  base.command = ci, base.pass = pass, base.answer = c.query;
+  base.command = ci, base.pass = pass, base.answer = c.query, base.object = c.object;
   base.test = c.role == CpuCommand::Role::Test;
   base.answerEach = base.test && c.answerEach;
   const auto answerOf = [&](std::uint32_t offset) { return c.query + (c.answerEach ? offset : 0); };
@@ -120,7 +121,8 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
           const std::uint32_t p1 = std::min<std::uint32_t>(stop, p0 + kPartTriangles);
           parts[p] = {};
           if (p0 == p1) continue;  // the item has no such part
-          if (p0 % kPartTriangles == 0 && (p1 - p0 == kPartTriangles || p1 == mesh.triangles.size()))
+          if (p0 % kPartTriangles == 0 &&
+              (p1 - p0 == kPartTriangles || p1 == mesh.triangles.size()))
             parts[p] = mesh.parts[p0 / kPartTriangles];
           else
             for (std::uint32_t t = p0; t < p1; ++t) parts[p].extend(mesh.triangles[t]);
@@ -226,6 +228,7 @@ void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
                                       : (chain.resolution + kBlock - 1) / kBlock * kBlock;
       chain.tilesX = tilesAcross(chain.resolution, chain.tileSize);
       chain.continues = pass.continues;
+      chain.orderIndependent = pass.raster.orderIndependent;
       chain.clearValue = pass.clearValue;
     }
     bins.chains.back().endPass = p + 1;

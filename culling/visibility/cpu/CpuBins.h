@@ -4,12 +4,12 @@
 // its pixels can have (from a box in its object's frame, so no triangle is transformed), and the
 // items of each chain of passes sharing one depth buffer are listed per screen tile, in issue
 // order. A tile's list is all CpuTileEvaluation needs to evaluate that tile on its own.
+#include <tbb/task_arena.h>
+
 #include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
-
-#include <tbb/task_arena.h>
 
 #include "culling/visibility/cpu/CpuMeshBounds.h"
 #include "culling/visibility/cpu/CpuRecording.h"
@@ -34,7 +34,8 @@ struct CpuItem {
   // box in CpuRecording::boxes.
   std::uint32_t first = 0;
   std::uint32_t count = 0;  // triangles, or 1 box
-  QueryIndex answer = 0;    // a test's (first) answer
+  std::uint32_t object = 0;
+  QueryIndex answer = 0;  // a test's (first) answer
   std::uint32_t pass = 0;
   bool test = false;
   bool answerEach = false;  // a test answering per triangle (answer + i for its i-th)
@@ -56,7 +57,8 @@ struct CpuChain {
   int tileSize = 0;  // pixels, a multiple of CpuDepthBuffer::kBlock
   int tilesX = 0;    // tiles per row and per column
   bool continues = false;
-  float clearValue = 1.f;  // the value its first pass clears to (unless it continues)
+  bool orderIndependent = false;  // its buffer keeps the others' planes (CpuDepthBuffer)
+  float clearValue = 1.f;         // the value its first pass clears to (unless it continues)
   // Items of tile t: binned[offsets[t] .. offsets[t + 1]), ascending (issue order).
   std::vector<std::uint32_t> offsets;
   std::vector<std::uint32_t> binned;

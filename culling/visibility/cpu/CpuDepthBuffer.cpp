@@ -4,12 +4,12 @@
 
 namespace cdb {
 
-void CpuDepthBuffer::resize(int resolution) {
+void CpuDepthBuffer::resize(int resolution, bool othersPlanes) {
   const int blocks = (resolution + kBlock - 1) / kBlock;
-  place(resolution, 0, 0, blocks, blocks);
+  place(resolution, 0, 0, blocks, blocks, othersPlanes);
 }
 
-void CpuDepthBuffer::place(int resolution, int bx0, int by0, int nx, int ny) {
+void CpuDepthBuffer::place(int resolution, int bx0, int by0, int nx, int ny, bool othersPlanes) {
   const int frameBlocks = (resolution + kBlock - 1) / kBlock;
   resolution_ = resolution;
   bx0_ = bx0, by0_ = by0;
@@ -20,6 +20,11 @@ void CpuDepthBuffer::place(int resolution, int bx0, int by0, int nx, int ny) {
   const std::size_t count = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
   // resize() keeps the capacity: a smaller window allocates nothing.
   data_.resize(count * kBlockPixels);
+  others_ = othersPlanes;
+  if (othersPlanes) {
+    objects_.resize(count * kBlockPixels);
+    second_.resize(count * kBlockPixels);
+  }
   min_.resize(count);
   max_.resize(count);
   uniform_.resize(count);
@@ -34,6 +39,10 @@ void CpuDepthBuffer::clear(float value) {
 void CpuDepthBuffer::materialise(std::size_t index) {
   if (!uniform_[index]) return;
   std::fill_n(block(index), kBlockPixels, min_[index]);
+  if (others_) {
+    std::fill_n(objects(index), kBlockPixels, kNoObject);
+    std::fill_n(others(index), kBlockPixels, max_[index]);
+  }
   uniform_[index] = 0;
 }
 

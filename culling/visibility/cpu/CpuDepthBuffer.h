@@ -6,6 +6,11 @@
 // sit on the frame's grid whatever the window, so a triangle covers the same pixels with the same
 // keys in any window. Clears are lazy: a cleared block is uniform (every pixel at one value) and
 // only filled when a write reaches it.
+//
+// For an order-independent pass (DepthUse::OrderIndependent) a buffer keeps two more planes: per
+// pixel the object that wrote the nearest depth, and the nearest depth any other object wrote. A
+// block's bounds are then the nearest of the first plane and the farthest of the second: a test
+// of any object reads a value between them.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -17,13 +22,15 @@ class CpuDepthBuffer {
   static constexpr int kBlock = 8;
   static constexpr int kBlockPixels = kBlock * kBlock;
 
+  static constexpr std::uint32_t kNoObject = ~std::uint32_t{0};
+
   // The whole resolution x resolution frame.
-  void resize(int resolution);
+  void resize(int resolution, bool othersPlanes = false);
   // Blocks [bx0, bx0 + nx) x [by0, by0 + ny) of a resolution x resolution frame (nx, ny clipped to
-  // the frame). Memory is only allocated when the window grows; contents are undefined until
-  // clear().
-  void place(int resolution, int bx0, int by0, int nx, int ny);
-  // Every pixel of the window at `value` (stored depth units).
+  // the frame), with the planes of an order-independent pass or not. Memory is only allocated
+  // when the window grows; contents are undefined until clear().
+  void place(int resolution, int bx0, int by0, int nx, int ny, bool othersPlanes = false);
+  // Every pixel of the window at `value` (stored depth units; written by no object).
   void clear(float value);
 
   [[nodiscard]] int resolution() const { return resolution_; }
@@ -62,6 +69,20 @@ class CpuDepthBuffer {
   // Fills a uniform block with its value, so that pixels can be written one by one.
   void materialise(std::size_t index);
 
+  // The planes of an order-independent pass (othersPlanes): per pixel of a non-uniform block the
+  // object that wrote its value, and the nearest value any other object wrote.
+  [[nodiscard]] bool hasOthersPlanes() const { return others_; }
+  [[nodiscard]] std::uint32_t* objects(std::size_t index) {
+    return objects_.data() + index * kBlockPixels;
+  }
+  [[nodiscard]] const std::uint32_t* objects(std::size_t index) const {
+    return objects_.data() + index * kBlockPixels;
+  }
+  [[nodiscard]] float* others(std::size_t index) { return second_.data() + index * kBlockPixels; }
+  [[nodiscard]] const float* others(std::size_t index) const {
+    return second_.data() + index * kBlockPixels;
+  }
+
   // Stored depth of pixel (x, y) of the frame, inside the window (tests and debugging; slow).
   [[nodiscard]] float at(int x, int y) const;
 
@@ -73,6 +94,9 @@ class CpuDepthBuffer {
   std::vector<float> min_;
   std::vector<float> max_;
   std::vector<std::uint8_t> uniform_;
+  bool others_ = false;
+  std::vector<std::uint32_t> objects_;
+  std::vector<float> second_;
 };
 
 }  // namespace cdb

@@ -2,11 +2,10 @@
 // What binning needs to know of each mesh of the attached scene without touching its triangles:
 // a box per chunk of consecutive triangles and one per triangle (in the mesh's own frame), and
 // whether it is closed with a consistent winding (see CpuCommand::winding).
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "scenes/SceneGeometry.h"
 

@@ -32,9 +32,12 @@ inline bool drawnForRole(const ScreenTriangle& t, std::int8_t winding, CpuComman
 // The unit cube [-1, 1]^3 (corner i has x, y, z = bits 0, 1, 2) as two triangles per face;
 // faces in the order -x, +x, -y, +y, -z, +z. A face's two triangles share their first and third
 // corner, so a, b, c of the first and the second's last go around the face.
-constexpr std::array<std::array<int, 6>, 6> kCubeFaces = {{
-    {0, 2, 6, 0, 6, 4}, {1, 5, 7, 1, 7, 3}, {0, 4, 5, 0, 5, 1},
-    {2, 3, 7, 2, 7, 6}, {0, 1, 3, 0, 3, 2}, {4, 6, 7, 4, 7, 5}}};
+constexpr std::array<std::array<int, 6>, 6> kCubeFaces = {{{0, 2, 6, 0, 6, 4},
+                                                           {1, 5, 7, 1, 7, 3},
+                                                           {0, 4, 5, 0, 5, 1},
+                                                           {2, 3, 7, 2, 7, 6},
+                                                           {0, 1, 3, 0, 3, 2},
+                                                           {4, 6, 7, 4, 7, 5}}};
 
 // The faces of a box that decide its answer (in kCubeFaces order). A box is convex: along any
 // line of sight the faces facing away from the viewer are farthest and those facing it nearest,
@@ -58,8 +61,8 @@ std::array<bool, 6> decidingFaces(const ScreenMatrix& cube, CpuCommand::Role rol
 }  // namespace
 
 void chunkPieces(const CpuRecording& recording, const Mesh& mesh, const CpuMeshBounds& bounds,
-                 const CpuCommand& c, const CpuItem& item, const PixelRect& window,
-                 double marginPx, CpuPieces& out) {
+                 const CpuCommand& c, const CpuItem& item, const PixelRect& window, double marginPx,
+                 CpuPieces& out) {
   out.areQuads = false;
   out.count = 0;
   const bool listed = c.source == CpuCommand::Source::Listed;

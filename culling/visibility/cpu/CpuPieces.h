@@ -28,8 +28,8 @@ struct CpuPieces {
 // (CpuCommand::winding), and none whose pixel box misses the window (nor any of a part whose
 // rectangle misses it).
 void chunkPieces(const CpuRecording& recording, const Mesh& mesh, const CpuMeshBounds& bounds,
-                 const CpuCommand& c, const CpuItem& item, const PixelRect& window,
-                 double marginPx, CpuPieces& out);
+                 const CpuCommand& c, const CpuItem& item, const PixelRect& window, double marginPx,
+                 CpuPieces& out);
 
 // A box's matrix from the unit cube [-1, 1]^3 to the screen.
 [[nodiscard]] ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box);

@@ -1,10 +1,10 @@
 #include "culling/visibility/cpu/CpuRasterBackend.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "core/Errors.h"
 #include "culling/visibility/cpu/CpuRasteriser.h"
@@ -87,6 +87,7 @@ CpuPass CpuRasterBackend::passFor(const DepthPassSetup& setup) const {
   // An NDC offset moves the window depth by half of it times the range.
   r.rawTestOffset = options_.rawDepthOffset * 0.5 * std::abs(setup.depthFar - setup.depthNear);
   r.conservative = options_.conservative;
+  r.orderIndependent = lastDepth_ == DepthUse::OrderIndependent;
   pass.clears = setup.clear;
   pass.clearValue = static_cast<float>(setup.clearDepth);
   return pass;
@@ -108,14 +109,15 @@ void CpuRasterBackend::beginPass(const ViewSpec& view, DepthUse depth) {
   worldToKey_.row(2) = std::abs(setup.depthFar - setup.depthNear) * setup.worldToScreen.row(2);
   worldToKey_(2, 3) += sign * setup.depthNear;
   CpuRecording& recording = open_->recording;
+  lastDepth_ = depth;
+  lastResolution_ = view.resolution;
+  testedInPass_ = false;
   CpuPass pass = passFor(setup);
   // Its SharedFirst already ran: it goes on in the buffer that pass left.
   pass.continues = depth == DepthUse::SharedSecond && recording.passes.empty();
   pass.firstCommand = static_cast<std::uint32_t>(recording.commands.size());
   recording.passes.push_back(pass);
   inPass_ = true;
-  lastDepth_ = depth;
-  lastResolution_ = view.resolution;
   ++counters_.passes;
   if (setup.clear) ++counters_.depthClears;
 }
@@ -158,9 +160,13 @@ CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source s
     pass.firstCommand = static_cast<std::uint32_t>(recording.commands.size());
     recording.passes.push_back(pass);
   }
+  if (role == CpuCommand::Role::Write && testedInPass_ && lastDepth_ == DepthUse::OrderIndependent)
+    throw RunError("a write after a test in an order-independent pass");
+  testedInPass_ = testedInPass_ || role == CpuCommand::Role::Test;
   CpuCommand& c = recording.commands.emplace_back();
   c.role = role;
   c.source = source;
+  c.object = object;
   c.mesh = scene_->objects[object].mesh;
   c.toScreen = worldToKey_ * poses_[object];
   return c;
@@ -168,8 +174,8 @@ CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source s
 
 std::int8_t CpuRasterBackend::wholeMeshWinding(const MeshRange& range) const {
   const SceneObject& o = scene_->objects[range.object];
-  const bool whole = range.firstTriangle == 0 &&
-                     range.triangleCount == scene_->meshes[o.mesh].triangleCount();
+  const bool whole =
+      range.firstTriangle == 0 && range.triangleCount == scene_->meshes[o.mesh].triangleCount();
   return whole ? meshBounds_[o.mesh].winding : std::int8_t{0};
 }
 
@@ -346,8 +352,7 @@ void CpuRasterBackend::flush() {
                  work_.local());
   };
   if (arena && units_.size() > 1) {
-    arena->execute(
-        [&] { tbb::parallel_for(std::size_t{0}, units_.size(), runUnit); });
+    arena->execute([&] { tbb::parallel_for(std::size_t{0}, units_.size(), runUnit); });
   } else {
     for (std::size_t u = 0; u < units_.size(); ++u) runUnit(u);
   }

@@ -9,14 +9,14 @@
 // (CpuTileEvaluation: a write is rasterised only where a later test reads it), and the pixel loops
 // (CpuRasteriser). Tiles are independent given their lists, so they run on oneTBB threads; answers
 // and the depths tests read depend neither on the thread count nor on the tile size.
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/task_arena.h>
+
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/task_arena.h>
 
 #include "culling/visibility/DepthPassSetup.h"
 #include "culling/visibility/VisibilityBackend.h"
@@ -39,6 +39,7 @@ class CpuRasterBackend final : public VisibilityBackend {
   // "cpu depth rasteriser (Highway AVX2, 2 threads)".
   [[nodiscard]] std::string renderer() const override;
   [[nodiscard]] int maxResolution() const override { return kMaxResolution; }
+  [[nodiscard]] bool supportsOrderIndependent() const override { return true; }
   void setOptions(const VisibilityOptions& options) override;
 
   // The scene is read when the recorded draws run (at fetchResults, or when the scene or the
@@ -104,6 +105,7 @@ class CpuRasterBackend final : public VisibilityBackend {
   ScreenMatrix worldToKey_ = ScreenMatrix::Zero();
   DepthUse lastDepth_ = DepthUse::Fresh;
   int lastResolution_ = 0;
+  bool testedInPass_ = false;  // a test was issued in the open pass
 
   std::shared_ptr<CpuRun> open_;       // what is being recorded
   std::uint32_t issued_ = 0;           // answers numbered since the last fetch

@@ -1,12 +1,12 @@
 // Compiled once per SIMD target (Highway's foreach_target), dispatched at run time.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "culling/visibility/cpu/CpuRasteriser.cpp"
+#include "culling/visibility/cpu/CpuRasteriser.h"
+
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 #include <algorithm>
-
-#include "culling/visibility/cpu/CpuRasteriser.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace cdb {
@@ -173,24 +173,43 @@ HWY_INLINE bool forEachStep(const Lanes& l, const TriangleRaster& r, const Block
   return false;
 }
 
-// Exact bounds of a block from its 64 values.
+// Exact bounds of a block from its 64 values (kOthers: the nearest of the first plane and the
+// farthest of the second, see CpuDepthBuffer).
+template <bool kOthers>
 HWY_INLINE void refreshBounds(CpuDepthBuffer& buffer, std::size_t index) {
   const D d;
   const int n = static_cast<int>(hn::Lanes(d));
   const float* values = buffer.block(index);
-  auto lo = hn::LoadU(d, values), hi = lo;
+  const float* far = kOthers ? buffer.others(index) : values;
+  auto lo = hn::LoadU(d, values), hi = hn::LoadU(d, far);
   for (int i = n; i < CpuDepthBuffer::kBlockPixels; i += n) {
-    const auto v = hn::LoadU(d, values + i);
-    lo = hn::Min(lo, v), hi = hn::Max(hi, v);
+    lo = hn::Min(lo, hn::LoadU(d, values + i));
+    hi = hn::Max(hi, hn::LoadU(d, far + i));
   }
   buffer.blockMin(index) = hn::GetLane(hn::MinOfLanes(d, lo));
   buffer.blockMax(index) = hn::GetLane(hn::MaxOfLanes(d, hi));
 }
 
-// A test of the span in one block: true at the first covered sample at or behind the stored key.
+// The object of the pieces drawn, and its lanes, for an order-independent pass (kOthers).
+using DI = hn::RebindToSigned<D>;
+struct Writer {
+  std::uint32_t object;
+  hn::Vec<DI> lanes;
+};
+HWY_INLINE Writer writerOf(std::uint32_t object) {
+  return {object, hn::Set(DI(), static_cast<std::int32_t>(object))};
+}
+HWY_INLINE hn::Mask<D> ownLanes(const std::uint32_t* objects, const Writer& w) {
+  const auto ids = hn::LoadU(DI(), reinterpret_cast<const std::int32_t*>(objects));
+  return hn::RebindMask(D(), hn::Eq(ids, w.lanes));
+}
+
+// A test of the span in one block: true at the first covered sample at or behind the stored key
+// (kOthers: the nearest any other object wrote).
+template <bool kOthers>
 HWY_INLINE bool testBlock(const CpuDepthBuffer& buffer, std::size_t index, const BlockKeys& stored,
                           const Lanes& l, const TriangleRaster& r, const BlockSpan& span, int bx,
-                          hn::Vec<D> sign, RasterWork& work) {
+                          hn::Vec<D> sign, const Writer& writer, RasterWork& work) {
   const D d;
   // Every sample key is at least zLo: at or behind all the block holds, so the first covered
   // pixel is occluded without reading depths.
@@ -202,41 +221,73 @@ HWY_INLINE bool testBlock(const CpuDepthBuffer& buffer, std::size_t index, const
                        const auto m = covered(l, row, dx, span);
                        if (allBehind) return !hn::AllFalse(d, m);
                        const auto key = keyAt(l, row, dx);
-                       const auto storedKey =
-                           uniform ? hn::Set(d, stored.nearest)
-                                   : hn::Mul(hn::LoadU(d, values + (y % kBlock) * kBlock + lx), sign);
+                       const int at = (y % kBlock) * kBlock + lx;
+                       hn::Vec<D> storedKey;
+                       if (uniform) {
+                         storedKey = hn::Set(d, stored.nearest);
+                       } else if constexpr (kOthers) {  // keys are stored values (sign +1)
+                         storedKey = hn::IfThenElse(ownLanes(buffer.objects(index) + at, writer),
+                                                    hn::LoadU(d, buffer.others(index) + at),
+                                                    hn::LoadU(d, values + at));
+                       } else {
+                         storedKey = hn::Mul(hn::LoadU(d, values + at), sign);
+                       }
                        return !hn::AllFalse(d, hn::And(m, hn::Ge(key, storedKey)));
                      });
 }
 
 // A write of the span in one block; kWhole: the triangle covers the whole box there, so the edge
-// functions are not evaluated. True when a stored value changed.
-template <bool kWhole>
-HWY_INLINE bool writeBlock(float* values, const Lanes& l, const TriangleRaster& r,
-                           const BlockSpan& span, int bx, hn::Vec<D> sign, RasterWork& work) {
+// functions are not evaluated. True when a stored value changed. kOthers: per pixel, a key of the
+// object that wrote the nearest value lowers it; a nearer key of another object takes it over
+// (the old nearest becomes the nearest of the others); a farther one lowers the others' nearest.
+template <bool kWhole, bool kOthers>
+HWY_INLINE bool writeBlock(CpuDepthBuffer& buffer, std::size_t index, const Lanes& l,
+                           const TriangleRaster& r, const BlockSpan& span, int bx, hn::Vec<D> sign,
+                           const Writer& writer, RasterWork& work) {
   const D d;
+  float* values = buffer.block(index);
   bool changed = false;
-  forEachStep(l, r, span, bx, work.pixelsWritten,
-              [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
-                const auto m = kWhole ? inBox(dx, span) : covered(l, row, dx, span);
-                float* at = values + (y % kBlock) * kBlock + lx;
-                const auto storedKey = hn::Mul(hn::LoadU(d, at), sign);
-                const auto key = keyAt(l, row, dx);
-                const auto nearer = hn::And(m, hn::Lt(key, storedKey));
-                if (hn::AllFalse(d, nearer)) return false;
-                hn::StoreU(hn::Mul(hn::IfThenElse(nearer, key, storedKey), sign), d, at);
-                changed = true;
-                return false;
-              });
+  forEachStep(
+      l, r, span, bx, work.pixelsWritten,
+      [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
+        const auto m = kWhole ? inBox(dx, span) : covered(l, row, dx, span);
+        const int at = (y % kBlock) * kBlock + lx;
+        const auto key = keyAt(l, row, dx);
+        if constexpr (kOthers) {
+          const auto nearest = hn::LoadU(d, values + at);
+          const auto others = hn::LoadU(d, buffer.others(index) + at);
+          const auto own = ownLanes(buffer.objects(index) + at, writer);
+          // Nearer than the nearest: the key is the nearest now, of this object.
+          const auto nearer = hn::And(m, hn::Lt(key, nearest));
+          const auto takeOver = hn::AndNot(own, nearer);
+          const auto lowersOthers =
+              hn::And(hn::AndNot(own, hn::AndNot(nearer, m)), hn::Lt(key, others));
+          if (hn::AllFalse(d, hn::Or(nearer, lowersOthers))) return false;
+          hn::StoreU(hn::IfThenElse(nearer, key, nearest), d, values + at);
+          hn::StoreU(hn::IfThenElse(takeOver, nearest, hn::IfThenElse(lowersOthers, key, others)),
+                     d, buffer.others(index) + at);
+          auto* ids = reinterpret_cast<std::int32_t*>(buffer.objects(index) + at);
+          hn::StoreU(
+              hn::IfThenElse(hn::RebindMask(DI(), takeOver), writer.lanes, hn::LoadU(DI(), ids)),
+              DI(), ids);
+        } else {
+          const auto storedKey = hn::Mul(hn::LoadU(d, values + at), sign);
+          const auto nearer = hn::And(m, hn::Lt(key, storedKey));
+          if (hn::AllFalse(d, nearer)) return false;
+          hn::StoreU(hn::Mul(hn::IfThenElse(nearer, key, storedKey), sign), d, values + at);
+        }
+        changed = true;
+        return false;
+      });
   return changed;
 }
 
 // The one traversal of a triangle's blocks inside the window, for tests and writes alike: blocks
 // whose bounds decide it are skipped, blocks it misses are skipped, the rest are visited. A test
 // returns true at its first occluded sample.
-template <bool kIsTest>
+template <bool kIsTest, bool kOthers>
 bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-                BlockMask mask, RasterWork& work) {
+                BlockMask mask, const Writer& writer, RasterWork& work) {
   const D d;
   const bool oneBlock = r.x0 / kBlock == r.x1 / kBlock && r.y0 / kBlock == r.y1 / kBlock;
   const auto sign = hn::Set(d, pass.sign);
@@ -249,21 +300,21 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
       const BlockKeys stored = blockKeys(buffer, index, pass.sign);
       if (blockDecides<kIsTest>(r, stored)) continue;
       // A test of a triangle inside one block needs no cover: its pixels are all there is.
-      const BlockCover cover =
-          kIsTest && oneBlock ? BlockCover::Partial : blockCover(r, bx, by);
+      const BlockCover cover = kIsTest && oneBlock ? BlockCover::Partial : blockCover(r, bx, by);
       if (!oneBlock && cover == BlockCover::None) continue;
       const BlockSpan span = spanInBlock(r, bx, by);
       if constexpr (kIsTest) {
-        if (testBlock(buffer, index, stored, l, r, span, bx, sign, work)) return true;
+        if (testBlock<kOthers>(buffer, index, stored, l, r, span, bx, sign, writer, work))
+          return true;
       } else {
         buffer.materialise(index);
-        float* values = buffer.block(index);
-        const bool changed = cover == BlockCover::Whole
-                                 ? writeBlock<true>(values, l, r, span, bx, sign, work)
-                                 : writeBlock<false>(values, l, r, span, bx, sign, work);
+        const bool changed =
+            cover == BlockCover::Whole
+                ? writeBlock<true, kOthers>(buffer, index, l, r, span, bx, sign, writer, work)
+                : writeBlock<false, kOthers>(buffer, index, l, r, span, bx, sign, writer, work);
         // Exact bounds again (a write only lowers keys, but the farthest may drop too, which
         // lets later tests accept the block whole).
-        if (changed) refreshBounds(buffer, index);
+        if (changed) refreshBounds<kOthers>(buffer, index);
       }
     }
   }
@@ -272,9 +323,9 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
 
 // A small triangle (smallBox): every pixel of its box inside the window, at the key bound of
 // step 1 (zHi for a test, zLo for a write).
-template <bool kIsTest>
+template <bool kIsTest, bool kOthers>
 bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-               BlockMask mask, RasterWork& work) {
+               BlockMask mask, const Writer& writer, RasterWork& work) {
   const int x0 = std::max(r.x0, buffer.pixelX0()), x1 = std::min(r.x1, buffer.pixelX1());
   const int y0 = std::max(r.y0, buffer.pixelY0()), y1 = std::min(r.y1, buffer.pixelY1());
   const float value = pass.sign * r.zLo;
@@ -284,26 +335,46 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
       if (!inMask(mask, index)) continue;
       const BlockKeys stored = blockKeys(buffer, index, pass.sign);
       if (blockDecides<kIsTest>(r, stored)) continue;
+      const int at = (y % kBlock) * kBlock + x % kBlock;
       if constexpr (kIsTest) {
         ++work.pixelsTested;
         if (buffer.uniform(index) || r.zLo >= stored.farthest) return true;
-        const float key = pass.sign * buffer.block(index)[(y % kBlock) * kBlock + x % kBlock];
+        const float key = kOthers && buffer.objects(index)[at] == writer.object
+                              ? buffer.others(index)[at]
+                              : pass.sign * buffer.block(index)[at];
         if (r.zHi >= key) return true;
+      } else if constexpr (kOthers) {
+        ++work.pixelsWritten;
+        buffer.materialise(index);
+        float& nearest = buffer.block(index)[at];
+        float& others = buffer.others(index)[at];
+        std::uint32_t& object = buffer.objects(index)[at];
+        if (object == writer.object) {
+          if (!(value < nearest)) continue;
+          nearest = value;
+        } else if (value < nearest) {
+          others = nearest, nearest = value, object = writer.object;
+        } else if (value < others) {
+          others = value;
+        } else {
+          continue;
+        }
+        refreshBounds<true>(buffer, index);
       } else {
         ++work.pixelsWritten;
         buffer.materialise(index);
-        float& at = buffer.block(index)[(y % kBlock) * kBlock + x % kBlock];
-        if (!(r.zLo < pass.sign * at)) continue;
-        const float old = at;
-        at = value;
+        float& stored1 = buffer.block(index)[at];
+        if (!(r.zLo < pass.sign * stored1)) continue;
+        const float old = stored1;
+        stored1 = value;
         // The value only moves toward the near bound; the far bound can only move when the pixel
         // held it.
         if (pass.sign > 0) {
           buffer.blockMin(index) = std::min(buffer.blockMin(index), value);
-          if (old == buffer.blockMax(index)) refreshBounds(buffer, index);
+          if (old == buffer.blockMax(index)) refreshBounds<false>(buffer, index);
         } else {
           buffer.blockMax(index) = std::max(buffer.blockMax(index), value);
-          if (old == buffer.blockMin(index)) refreshBounds(buffer, index);
+          if (old == buffer.blockMin(index)) refreshBounds<false>(buffer, index);
         }
       }
     }
@@ -325,16 +396,17 @@ bool decidedByBlocks(const CpuDepthBuffer& buffer, const RasterPass& pass, const
 }
 
 // One piece (a triangle, or a quad) tested or written: true when a test finds an occluded sample.
-template <bool kIsTest, class Piece>
+template <bool kIsTest, bool kOthers, class Piece>
 HWY_INLINE bool drawPiece(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
-                          RasterWork& work) {
+                          const Writer& writer, RasterWork& work) {
   constexpr RasterRole role = kIsTest ? RasterRole::Test : RasterRole::Write;
   TriangleRaster r;
   if (!setupBounds(t, pass, role, r)) return false;
-  if (smallBox(pass, r)) return drawSmall<kIsTest>(buffer, pass, r, kAllBlocks, work);
+  if (smallBox(pass, r))
+    return drawSmall<kIsTest, kOthers>(buffer, pass, r, kAllBlocks, writer, work);
   if (decidedByBlocks<kIsTest>(buffer, pass, r, kAllBlocks)) return false;
   setupCoverage(t, pass, role, r);
-  return drawBlocks<kIsTest>(buffer, pass, r, kAllBlocks, work);
+  return drawBlocks<kIsTest, kOthers>(buffer, pass, r, kAllBlocks, writer, work);
 }
 
 // Pieces prepared to be written later, block by block: those with a pixel in the window.
@@ -370,15 +442,15 @@ std::size_t PrepareQuads(const CpuDepthBuffer& buffer, const RasterPass& pass,
   return prepare(buffer, pass, quads, count, out);
 }
 
-template <class Piece>
+template <bool kOthers, class Piece>
 void writePreparedPieces(CpuDepthBuffer& buffer, const RasterPass& pass,
                          PreparedWrite<Piece>* writes, std::size_t count, BlockMask mask,
-                         RasterWork& work) {
+                         const Writer& writer, RasterWork& work) {
   for (std::size_t i = 0; i < count; ++i) {
     PreparedWrite<Piece>& w = writes[i];
     if ((w.blocks & mask) == 0) continue;
     if (smallBox(pass, w.raster)) {
-      drawSmall<!kTest>(buffer, pass, w.raster, mask, work);
+      drawSmall<!kTest, kOthers>(buffer, pass, w.raster, mask, writer, work);
       continue;
     }
     if (decidedByBlocks<!kTest>(buffer, pass, w.raster, mask)) continue;
@@ -386,55 +458,91 @@ void writePreparedPieces(CpuDepthBuffer& buffer, const RasterPass& pass,
       setupCoverage(w.piece, pass, RasterRole::Write, w.raster);
       w.coverage = true;
     }
-    drawBlocks<!kTest>(buffer, pass, w.raster, mask, work);
+    drawBlocks<!kTest, kOthers>(buffer, pass, w.raster, mask, writer, work);
   }
+}
+template <class Piece>
+void writePreparedAny(CpuDepthBuffer& buffer, const RasterPass& pass, PreparedWrite<Piece>* writes,
+                      std::size_t count, BlockMask mask, std::uint32_t object, RasterWork& work) {
+  if (pass.orderIndependent)
+    writePreparedPieces<true>(buffer, pass, writes, count, mask, writerOf(object), work);
+  else
+    writePreparedPieces<false>(buffer, pass, writes, count, mask, writerOf(object), work);
 }
 void WritePreparedTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
                             PreparedWrite<ScreenTriangle>* writes, std::size_t count,
-                            BlockMask mask, RasterWork& work) {
-  writePreparedPieces(buffer, pass, writes, count, mask, work);
+                            BlockMask mask, std::uint32_t object, RasterWork& work) {
+  writePreparedAny(buffer, pass, writes, count, mask, object, work);
 }
 void WritePreparedQuads(CpuDepthBuffer& buffer, const RasterPass& pass,
                         PreparedWrite<ScreenQuad>* writes, std::size_t count, BlockMask mask,
-                        RasterWork& work) {
-  writePreparedPieces(buffer, pass, writes, count, mask, work);
+                        std::uint32_t object, RasterWork& work) {
+  writePreparedAny(buffer, pass, writes, count, mask, object, work);
 }
 
-template <class Piece>
+template <bool kOthers, class Piece>
 std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
-                              std::size_t count, RasterWork& work) {
+                              std::size_t count, const Writer& writer, RasterWork& work) {
   for (std::size_t i = 0; i < count; ++i)
-    if (drawPiece<kTest>(buffer, pass, pieces[i], work)) return i;
+    if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work)) return i;
   return count;
+}
+template <class Piece>
+std::size_t testAny(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
+                    std::size_t count, std::uint32_t object, RasterWork& work) {
+  return pass.orderIndependent
+             ? testUntilOccluded<true>(buffer, pass, pieces, count, writerOf(object), work)
+             : testUntilOccluded<false>(buffer, pass, pieces, count, writerOf(object), work);
 }
 std::size_t TestUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                               const ScreenTriangle* triangles, std::size_t count,
-                              RasterWork& work) {
-  return testUntilOccluded(buffer, pass, triangles, count, work);
+                              std::uint32_t object, RasterWork& work) {
+  return testAny(buffer, pass, triangles, count, object, work);
 }
 std::size_t TestQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
-                                   const ScreenQuad* quads, std::size_t count, RasterWork& work) {
-  return testUntilOccluded(buffer, pass, quads, count, work);
+                                   const ScreenQuad* quads, std::size_t count, std::uint32_t object,
+                                   RasterWork& work) {
+  return testAny(buffer, pass, quads, count, object, work);
 }
 
-void TestEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
-              std::size_t count, std::uint8_t* fullyVisible, RasterWork& work) {
+template <bool kOthers>
+void testEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
+              std::size_t count, std::uint8_t* fullyVisible, const Writer& writer,
+              RasterWork& work) {
   for (std::size_t i = 0; i < count; ++i)
-    if (fullyVisible[i] && drawPiece<kTest>(buffer, pass, triangles[i], work)) fullyVisible[i] = 0;
+    if (fullyVisible[i] && drawPiece<kTest, kOthers>(buffer, pass, triangles[i], writer, work))
+      fullyVisible[i] = 0;
+}
+void TestEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
+              std::size_t count, std::uint8_t* fullyVisible, std::uint32_t object,
+              RasterWork& work) {
+  if (pass.orderIndependent)
+    testEach<true>(buffer, pass, triangles, count, fullyVisible, writerOf(object), work);
+  else
+    testEach<false>(buffer, pass, triangles, count, fullyVisible, writerOf(object), work);
 }
 
-template <class Piece>
+template <bool kOthers, class Piece>
 void writeAll(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
-              std::size_t count, RasterWork& work) {
-  for (std::size_t i = 0; i < count; ++i) drawPiece<!kTest>(buffer, pass, pieces[i], work);
+              std::size_t count, const Writer& writer, RasterWork& work) {
+  for (std::size_t i = 0; i < count; ++i)
+    drawPiece<!kTest, kOthers>(buffer, pass, pieces[i], writer, work);
+}
+template <class Piece>
+void writeAny(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
+              std::size_t count, std::uint32_t object, RasterWork& work) {
+  if (pass.orderIndependent)
+    writeAll<true>(buffer, pass, pieces, count, writerOf(object), work);
+  else
+    writeAll<false>(buffer, pass, pieces, count, writerOf(object), work);
 }
 void WriteAll(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
-              std::size_t count, RasterWork& work) {
-  writeAll(buffer, pass, triangles, count, work);
+              std::size_t count, std::uint32_t object, RasterWork& work) {
+  writeAny(buffer, pass, triangles, count, object, work);
 }
 void WriteQuads(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenQuad* quads,
-                std::size_t count, RasterWork& work) {
-  writeAll(buffer, pass, quads, count, work);
+                std::size_t count, std::uint32_t object, RasterWork& work) {
+  writeAny(buffer, pass, quads, count, object, work);
 }
 
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
@@ -458,33 +566,35 @@ HWY_EXPORT(WritePreparedQuads);
 HWY_EXPORT(TargetName);
 
 std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
-                                       std::span<const ScreenTriangle> triangles,
-                                       RasterWork& work) {
+                                       std::span<const ScreenTriangle> triangles, RasterWork& work,
+                                       std::uint32_t object) {
   return HWY_DYNAMIC_DISPATCH(TestUntilOccluded)(buffer, pass, triangles.data(), triangles.size(),
-                                                 work);
+                                                 object, work);
 }
 
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
-                      RasterWork& work) {
-  HWY_DYNAMIC_DISPATCH(TestEach)(buffer, pass, triangles.data(), triangles.size(), fullyVisible,
-                                 work);
+                      RasterWork& work, std::uint32_t object) {
+  HWY_DYNAMIC_DISPATCH(TestEach)
+  (buffer, pass, triangles.data(), triangles.size(), fullyVisible, object, work);
 }
 
 void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
-                    std::span<const ScreenTriangle> triangles, RasterWork& work) {
-  HWY_DYNAMIC_DISPATCH(WriteAll)(buffer, pass, triangles.data(), triangles.size(), work);
+                    std::span<const ScreenTriangle> triangles, RasterWork& work,
+                    std::uint32_t object) {
+  HWY_DYNAMIC_DISPATCH(WriteAll)(buffer, pass, triangles.data(), triangles.size(), object, work);
 }
 
 std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
-                                   std::span<const ScreenQuad> quads, RasterWork& work) {
+                                   std::span<const ScreenQuad> quads, RasterWork& work,
+                                   std::uint32_t object) {
   return HWY_DYNAMIC_DISPATCH(TestQuadsUntilOccluded)(buffer, pass, quads.data(), quads.size(),
-                                                      work);
+                                                      object, work);
 }
 
 void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,
-                RasterWork& work) {
-  HWY_DYNAMIC_DISPATCH(WriteQuads)(buffer, pass, quads.data(), quads.size(), work);
+                RasterWork& work, std::uint32_t object) {
+  HWY_DYNAMIC_DISPATCH(WriteQuads)(buffer, pass, quads.data(), quads.size(), object, work);
 }
 
 std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
@@ -501,15 +611,16 @@ std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
 
 void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
                    std::span<PreparedWrite<ScreenTriangle>> writes, BlockMask mask,
-                   RasterWork& work) {
-  HWY_DYNAMIC_DISPATCH(WritePreparedTriangles)(buffer, pass, writes.data(), writes.size(), mask,
-                                               work);
+                   RasterWork& work, std::uint32_t object) {
+  HWY_DYNAMIC_DISPATCH(WritePreparedTriangles)
+  (buffer, pass, writes.data(), writes.size(), mask, object, work);
 }
 
 void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
-                   std::span<PreparedWrite<ScreenQuad>> writes, BlockMask mask,
-                   RasterWork& work) {
-  HWY_DYNAMIC_DISPATCH(WritePreparedQuads)(buffer, pass, writes.data(), writes.size(), mask, work);
+                   std::span<PreparedWrite<ScreenQuad>> writes, BlockMask mask, RasterWork& work,
+                   std::uint32_t object) {
+  HWY_DYNAMIC_DISPATCH(WritePreparedQuads)
+  (buffer, pass, writes.data(), writes.size(), mask, object, work);
 }
 
 const char* rasteriserTarget() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }

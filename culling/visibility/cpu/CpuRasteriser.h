@@ -25,27 +25,32 @@ struct RasterWork {
   }
 };
 
+// In an order-independent pass (RasterPass::orderIndependent, a buffer with the others' planes)
+// every function takes the object whose pieces it draws: a test reads the nearest value any other
+// object wrote, a write keeps the nearest value, its object and the others' nearest.
+
 // Tests the triangles in order as one piece; returns the index of the first with an occluded
 // sample (at or behind the stored depth), or triangles.size() when the piece is fully visible.
-[[nodiscard]] std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer,
-                                                     const RasterPass& pass,
-                                                     std::span<const ScreenTriangle> triangles,
-                                                     RasterWork& work);
+[[nodiscard]] std::size_t testTrianglesUntilOccluded(
+    CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenTriangle> triangles,
+    RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject);
 // Tests each triangle as its own piece: fullyVisible[i] = 0 where triangle i has an occluded
 // sample; triangles whose entry is already 0 are not tested.
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
-                      RasterWork& work);
+                      RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject);
 // Writes the triangles in order (depth test "nearer than stored").
 void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
-                    std::span<const ScreenTriangle> triangles, RasterWork& work);
+                    std::span<const ScreenTriangle> triangles, RasterWork& work,
+                    std::uint32_t object = CpuDepthBuffer::kNoObject);
 
 // The same for quads (ScreenQuad; conservative passes only), each set up and visited as one piece.
 [[nodiscard]] std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                                  std::span<const ScreenQuad> quads,
-                                                 RasterWork& work);
+                                                 RasterWork& work,
+                                                 std::uint32_t object = CpuDepthBuffer::kNoObject);
 void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,
-                RasterWork& work);
+                RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject);
 
 // Writes prepared once and drawn block by block (a write drawn where tests need it, in parts): bit
 // i of a mask is block i of the buffer's window (CpuDepthBuffer::blockIndex; windows of at most 64
@@ -71,9 +76,10 @@ std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
 // split, they leave what writeTriangles (writeQuads) leaves.
 void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
                    std::span<PreparedWrite<ScreenTriangle>> writes, BlockMask mask,
-                   RasterWork& work);
+                   RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject);
 void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
-                   std::span<PreparedWrite<ScreenQuad>> writes, BlockMask mask, RasterWork& work);
+                   std::span<PreparedWrite<ScreenQuad>> writes, BlockMask mask, RasterWork& work,
+                   std::uint32_t object = CpuDepthBuffer::kNoObject);
 
 // The instruction set the loops run with ("AVX2", "AVX3", "SSE4", ...).
 [[nodiscard]] const char* rasteriserTarget();

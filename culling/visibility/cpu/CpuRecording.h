@@ -4,11 +4,10 @@
 // at fetchResults, so a recording runs then (binned to screen tiles, CpuBins; each tile evaluated
 // on demand, CpuTileEvaluation). A recording is immutable once it ran: writes it left pending are
 // resolved from it by later recordings of the same buffer.
-#include <cstdint>
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
 
 #include "core/OrientedBox.h"
 #include "culling/visibility/VisibilityBackend.h"
@@ -32,7 +31,8 @@ struct CpuCommand {
   // counter-clockwise seen from outside, -1 clockwise; then only the triangles facing away
   // (tests) or toward the viewer (writes) are drawn. 0: every triangle.
   std::int8_t winding = 0;
-  std::uint32_t mesh = 0;  // index into the scene's meshes
+  std::uint32_t object = 0;  // the scene object drawn
+  std::uint32_t mesh = 0;    // its mesh, an index into the scene's meshes
   std::uint32_t first = 0;
   std::uint32_t count = 0;
   QueryIndex query = 0;  // the (first) answer's index

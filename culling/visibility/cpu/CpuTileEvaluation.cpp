@@ -53,15 +53,16 @@ void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
 }
 
 // A write drawn whole where it is (the plain evaluation).
-void writeItem(CpuDepthBuffer& depth, const CpuScene& scene, const CpuRun& run,
-               const CpuItem& item, CpuTileWork& work) {
+void writeItem(CpuDepthBuffer& depth, const CpuScene& scene, const CpuRun& run, const CpuItem& item,
+               CpuTileWork& work) {
   CpuPieces pieces;
   piecesOf(scene, run, item, depth, pieces);
   const RasterPass& raster = run.recording.passes[item.pass].raster;
   if (pieces.areQuads)
-    writeQuads(depth, raster, {pieces.quads.data(), pieces.count}, work.raster);
+    writeQuads(depth, raster, {pieces.quads.data(), pieces.count}, work.raster, item.object);
   else
-    writeTriangles(depth, raster, {pieces.triangles.data(), pieces.count}, work.raster);
+    writeTriangles(depth, raster, {pieces.triangles.data(), pieces.count}, work.raster,
+                   item.object);
   ++work.writesRasterised;
 }
 
@@ -86,7 +87,7 @@ void drawPrepared(std::vector<PreparedWrite<Piece>>& prepared, CpuDepthBuffer& d
     ++work.writesRasterised;
   }
   writePrepared(depth, raster, {prepared.data() + p.firstPrepared, p.preparedCount},
-                blocks & p.remaining, work.raster);
+                blocks & p.remaining, work.raster, p.object);
 }
 
 void drawPending(CpuTileState& state, const CpuScene& scene, CpuPendingWrite& p, BlockMask blocks,
@@ -108,11 +109,11 @@ void drawPending(CpuTileState& state, const CpuScene& scene, CpuPendingWrite& p,
 // Tests an item's pieces against what the tile holds; clears the answers it finds occluded and
 // returns whether any of its answers is still visible.
 bool testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
-                const CpuItem& item, std::uint8_t* visible, CpuAnswers answers,
-                CpuTileWork& work) {
+                const CpuItem& item, std::uint8_t* visible, CpuAnswers answers, CpuTileWork& work) {
   if (item.answerEach && !pieces.areQuads && item.count > 1) {
     // One answer per triangle.
-    testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster);
+    testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster,
+                     item.object);
     bool any = false;
     for (std::size_t i = 0; i < pieces.count; ++i) {
       if (!visible[i]) answers.occlude(item.answer + pieces.offset[i]);
@@ -122,10 +123,10 @@ bool testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass
   }
   const bool occluded =
       pieces.areQuads
-          ? testQuadsUntilOccluded(depth, raster, {pieces.quads.data(), pieces.count},
-                                   work.raster) < pieces.count
+          ? testQuadsUntilOccluded(depth, raster, {pieces.quads.data(), pieces.count}, work.raster,
+                                   item.object) < pieces.count
           : testTrianglesUntilOccluded(depth, raster, {pieces.triangles.data(), pieces.count},
-                                       work.raster) < pieces.count;
+                                       work.raster, item.object) < pieces.count;
   if (occluded) answers.occlude(item.answer);
   return !occluded;
 }
@@ -174,7 +175,8 @@ void startTile(CpuTileState& state, const CpuChain& chain, std::uint32_t tile, f
                std::uint64_t chainId) {
   const int blocks = chain.tileSize / kBlock;
   const int tx = static_cast<int>(tile % chain.tilesX), ty = static_cast<int>(tile / chain.tilesX);
-  state.depth.place(chain.resolution, tx * blocks, ty * blocks, blocks, blocks);
+  state.depth.place(chain.resolution, tx * blocks, ty * blocks, blocks, blocks,
+                    chain.orderIndependent);
   state.depth.clear(clearValue);
   state.pending.clear();
   state.preparedTriangles.clear();
@@ -201,7 +203,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       // At or behind everything stored under it (pending writes only add nearer keys): it
       // changes nothing.
       if (item.kLo >= storedKeys(state.depth, blocks, raster.sign).farthest) continue;
-      state.pending.push_back({blocks, item.kLo, item.kHi, &run, i});
+      state.pending.push_back({blocks, item.kLo, item.kHi, item.object, &run, i});
       continue;
     }
     ++work.tests;
@@ -209,11 +211,11 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       ++work.testsSkipped;
       continue;
     }
-    const BlockMask blocks = evaluation.demandDriven
-                                 ? blocksUnder(state.depth, item.rect.within(inTile))
-                                 : BlockMask{0};
+    const BlockMask blocks =
+        evaluation.demandDriven ? blocksUnder(state.depth, item.rect.within(inTile)) : BlockMask{0};
     const auto reads = [&](const CpuPendingWrite& p) {
-      return (p.remaining & blocks) != 0 && p.kLo <= item.kHi;
+      return (p.remaining & blocks) != 0 && p.kLo <= item.kHi &&
+             !(raster.orderIndependent && p.object == item.object);
     };
     const bool readsPending = std::any_of(state.pending.begin(), state.pending.end(), reads);
     if (evaluation.demandDriven && !readsPending &&

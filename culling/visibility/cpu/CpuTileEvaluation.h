@@ -12,6 +12,7 @@
 //    behind it; otherwise those pending writes are drawn into exactly the blocks under the test
 //    (set up once per tile, kept for the blocks a later test may need) and the test's own pixels
 //    in the tile are tested.
+// In an order-independent pass a test of object i reads no pending write of i's own.
 // A write no undecided test reads is never rasterised. The answer is the one drawing every write
 // and testing every piece gives: stored depth is the nearest of what was written (in one pass'
 // order, so a write drawn later or in parts leaves the same), and a pending write left out can only
@@ -49,6 +50,7 @@ struct CpuPendingWrite {
   static constexpr std::uint32_t kNotSetUp = ~std::uint32_t{0};
   BlockMask remaining = 0;  // blocks of its rectangle in the tile it is not drawn in yet
   float kLo = 0.f, kHi = 0.f;
+  std::uint32_t object = 0;
   const CpuRun* run = nullptr;
   std::uint32_t item = 0;
   // Its pieces prepared in CpuTileState::preparedTriangles (or preparedQuads), once a test needed
@@ -71,11 +73,11 @@ struct CpuTileState {
 // What tiles did, summed into VisibilityCounters.
 struct CpuTileWork {
   RasterWork raster;
-  std::uint64_t tests = 0;          // (test item, tile) visits
-  std::uint64_t testsByBounds = 0;  // of them decided without pixels
-  std::uint64_t testsSkipped = 0;   // of them skipped: answered elsewhere
+  std::uint64_t tests = 0;                // (test item, tile) visits
+  std::uint64_t testsByBounds = 0;        // of them decided without pixels
+  std::uint64_t testsSkipped = 0;         // of them skipped: answered elsewhere
   std::uint64_t testsAfterResolving = 0;  // tested again after drawing pending writes
-  std::uint64_t writes = 0;         // (write item, tile) visits
+  std::uint64_t writes = 0;               // (write item, tile) visits
   std::uint64_t writesRasterised = 0;
   CpuTileWork& operator+=(const CpuTileWork& o);
 };

@@ -50,6 +50,9 @@ struct RasterPass {
   // Raw mode: what tests add to their key (VisibilityOptions::rawDepthOffset in keys).
   double rawTestOffset = 0.0;
   bool conservative = true;
+  // An order-independent pass (DepthUse::OrderIndependent; sign +1): the buffer keeps the nearest
+  // value, its object and the nearest of the others, and a test reads the others' nearest.
+  bool orderIndependent = false;
 };
 
 enum class RasterRole { Test, Write };
@@ -206,8 +209,8 @@ CDB_RASTER_INLINE void conservativeEdge(int e, double a, double b, double c, dou
   const double minOff = std::min(a, 0.0) + std::min(b, 0.0) - grow;
   const double lo = spanLo - maxOff, hi = spanHi - minOff;
   // The loops evaluate f in float: widen by a bound of that error (only adds pixels).
-  const double tol = kFloatEvalError * (std::abs(a) * spanX + std::abs(b) * spanY +
-                                        std::abs(c) + std::abs(lo) + std::abs(hi));
+  const double tol = kFloatEvalError * (std::abs(a) * spanX + std::abs(b) * spanY + std::abs(c) +
+                                        std::abs(lo) + std::abs(hi));
   r.a[e] = static_cast<float>(a), r.b[e] = static_cast<float>(b), r.c[e] = static_cast<float>(c);
   r.lo[e] = roundDown(lo - tol), r.hi[e] = roundUp(hi + tol);
   if (!std::isfinite(r.a[e]) || !std::isfinite(r.b[e]) || !std::isfinite(r.c[e]) ||
@@ -287,7 +290,8 @@ CDB_RASTER_INLINE void setupCoverage(const Piece& t, const RasterPass& pass, Ras
       const double a = -orient * (t.y[j] - t.y[i]), b = orient * (t.x[j] - t.x[i]);
       const double c = a * (ox + 0.5 - t.x[i]) + b * (oy + 0.5 - t.y[i]);
       const bool owns = a > 0.0 || (a == 0.0 && b > 0.0);
-      r.a[e] = static_cast<float>(a), r.b[e] = static_cast<float>(b), r.c[e] = static_cast<float>(c);
+      r.a[e] = static_cast<float>(a), r.b[e] = static_cast<float>(b),
+      r.c[e] = static_cast<float>(c);
       r.lo[e] = owns ? 0.f : std::numeric_limits<float>::min();
       r.hi[e] = std::numeric_limits<float>::infinity();
     }
