@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Copies a finished reproduction run into the form results/ commits: per environment folder
 # (RUN/envN or RUN/<backend>/envN) frames.csv compressed to frames.csv.gz, meta.json, the run's
-# own table (summary.md, summary.csv) and the shares' shard-*.json. Left behind: recordings/ (the recorded poses, which a rerun records again
+# own table (summary.md, summary.csv), the shares' shard-*.json and the snapshots (snapshot*.png
+# with their .json, the report's pictures of the scenes). Left behind: recordings/ (the recorded
+# poses, which a rerun records again
 # from the same seeds), cells/ and run.json (what a stopped run resumes from). scripts/report.py
 # reads frames.csv.gz as it reads frames.csv, so the report can be written into DEST afterwards:
 #
@@ -37,7 +39,8 @@ for env in "${envs[@]}"; do
   gzip -9 -n -c "$run/$env/frames.csv" > "$dest/$env/frames.csv.gz"
   cp "$run/$env/meta.json" "$dest/$env/"
   for f in summary.md summary.csv; do [[ ! -f $run/$env/$f ]] || cp "$run/$env/$f" "$dest/$env/"; done
-  find "$run/$env" -maxdepth 1 -name 'shard-*.json' -exec cp {} "$dest/$env/" \;
+  find "$run/$env" -maxdepth 1 \( -name 'shard-*.json' -o -name 'snapshot*.png' -o -name 'snapshot*.json' \) \
+    -exec cp {} "$dest/$env/" \;
   echo "pack-results: $env: $(wc -l < "$run/$env/frames.csv") lines, frames.csv.gz $(du -k "$dest/$env/frames.csv.gz" | cut -f1) KiB"
 done
 echo "pack-results: wrote $dest ($(du -sk "$dest" | cut -f1) KiB)"

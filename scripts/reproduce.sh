@@ -29,6 +29,8 @@
 # at a time unless --jobs is given: GL runs sharing one GPU slow each other down (8 at once on an
 # H100 made each frame 3.7-5.4x slower), which would be measured as CD time. A stopped run
 # resumes where it stopped when the same command is run again.
+# After the runs, each environment of the primary backend gets snapshot.png (and .json), the report's
+# picture of the scene (thesis Figures 4.1, 4.5, 4.10), drawn from the poses the run recorded.
 # --env runs only the named environments of the primary backend (a rerun of one, say).
 # --out DIR writes into DIR instead of results/<profile> (e.g. one folder per machine).
 # --no-build runs build/cdbench as it is (a machine that has the binary and its libraries but
@@ -107,10 +109,39 @@ run() {
   ((status == 0)) || failed+=("$backend/$env")
 }
 
+# snapshot ENV: the picture at the head of the environment's report section, from the poses the run
+# recorded in its recordings/ folder (nothing is simulated again): the first simulation of the
+# fewest objects, at its measured frame with the most colliding pairs (the earliest of equals),
+# objects coloured by the sets of ours on the run's backend at 800 pixels. Seconds per environment;
+# a failure costs the report its picture, not the run.
+snapshot() {
+  local env=$1 dir=$out/$primary/$1 pick objects frame recording
+  [[ -s $dir/frames.csv ]] || return 0
+  pick=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    $col["repeat"] == 0 {
+      n = $col["objects"] + 0; f = $col["frame"] + 0
+      t = $col["truth_pairs"] + 0; if ($col["colliding_pairs"] + 0 > t) t = $col["colliding_pairs"] + 0
+      if (!seen || n < bn || (n == bn && (t > bt || (t == bt && f < bf)))) { seen = 1; bn = n; bt = t; bf = f }
+    }
+    END { if (seen) print bn, bf }' "$dir/frames.csv")
+  [[ -n $pick ]] || return 0
+  read -r objects frame <<<"$pick"
+  recording=$dir/recordings/o-_r0.poses  # an environment without a swept object count
+  [[ -f $recording ]] || recording=$dir/recordings/o${objects}_r0.poses
+  if [[ ! -f $recording ]]; then
+    echo "reproduce: $env: no recording of its first simulation in $dir/recordings; no snapshot" >&2
+    return 0
+  fi
+  build/cdbench snapshot "configs/$env.yaml" --replay "$recording" --frame "$frame" --strategy ours \
+    --visibility "$primary" --resolution 800 --out "$dir/snapshot.png" ||
+    echo "reproduce: $env: no snapshot (see above); the report goes on without it" >&2
+}
+
 for env in ${envs//,/ }; do
   [[ -f configs/$env.yaml ]] || { echo "reproduce: no configs/$env.yaml" >&2; exit 2; }
   run "$primary" "$env" "${common[@]}"
 done
+for env in ${envs//,/ }; do snapshot "$env"; done
 if [[ $profile == standard ]]; then
   for backend in gl-flags gl-queries; do
     [[ $backend == "$primary" ]] && continue

@@ -20,6 +20,7 @@ from .findings import analyse
 from .report_text import report_markdown
 from .runs import (NO_RESOLUTION, REFERENCE_ROWS, cells_from_frames, discover_environments, is_run_folder,
                    read_environment, run_environment)
+from .snapshots import find_snapshots
 from .tabular import InputError
 from .thesis import DEFAULT_PATH, ThesisTables
 
@@ -139,8 +140,10 @@ def _same_simulations(a, b):
 def _section(env_run, cmp, thesis, figures):
     """What REPORT.md needs of one environment of one backend; writes its comparison (and figures)."""
     section = {"run": env_run, "comparison": cmp, "figures": [], "skipped": [], "findings": None,
-               "correctness": []}
+               "correctness": [], "snapshots": []}
     if env_run.status == "ok":
+        if figures:
+            section["snapshots"] = find_snapshots(env_run.folder, env_run.name)
         write_comparison(cmp)
         if figures:
             section["figures"], section["skipped"] = draw_figures(cmp, thesis)

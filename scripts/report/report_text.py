@@ -262,6 +262,8 @@ def _environment(s, result_dir, layout, cost_models):
                    f"(all cells are in {folder}{frames_file(run.folder).name}).")
     if run.notes or cmp.layout.other_fixed_values:
         out.append("")
+    for snap in s.get("snapshots", []):
+        out += [f"![{snap.alt}]({snap.path.relative_to(result_dir).as_posix()})", "", snap.caption, ""]
     out += ["### Tables", "", f"Also in `{folder}comparison.md` and `{folder}comparison.csv`. "
             + ("Cells: this run [95% interval] (thesis); blank = not measured." if cmp.table
                else "Blank = not measured."), ""]
