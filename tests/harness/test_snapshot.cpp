@@ -1,9 +1,10 @@
 // `cdbench snapshot` end to end on env3 with 50 tori at frame 46 (one contact, README "CI
-// regression check"): the picture decodes at the size asked for, says what `cdbench run` measures
-// on that frame, each set's colour lies on its own objects (pixel counts per colour inside and
-// outside the objects' boxes), pruned objects are grey, the colliding pair is outlined, and the
-// same command writes the same bytes. Then a short sequence and its animation, a picture without a
-// strategy, and the pieces that parse options and lay out the legend.
+// regression check"), replaying the poses `cdbench run` recorded (the object count read from the
+// recording): the picture decodes at the size asked for, says what the run measured on that
+// frame, each set's colour lies on its own objects (pixel counts per colour inside and outside the
+// objects' boxes), pruned objects are grey, the colliding pair is outlined, and the same command
+// writes the same bytes. Then a short sequence and its animation, a picture without a strategy,
+// and the pieces that parse options and lay out the legend.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -82,19 +83,21 @@ class Snapshot : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new std::filesystem::path(test::freshTempDir("snapshot"));
-    const std::string common = "snapshot " + kSnapshotConfig + " --objects 50 --frame " +
-                               std::to_string(kSnapshotFrame) +
+    // The run measures the frame and records the poses; the pictures replay them.
+    const auto recording = *dir_ / "env3-50.poses";
+    const auto run = cdbenchCli("run " + kSnapshotConfig + " --objects 50 --frames " +
+                                std::to_string(kSnapshotFrame + 1) + " --frame-stride " +
+                                std::to_string(kSnapshotFrame) +
+                                " --strategies ours --resolutions 256 --repeats 1 --quiet --out " +
+                                (*dir_ / "run").string() + " --record " + recording.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string common = "snapshot " + kSnapshotConfig + " --replay " + recording.string() +
+                               " --frame " + std::to_string(kSnapshotFrame) +
                                " --strategy ours --resolution 256 --size 640x480 --out ";
     for (const char* name : {"a.png", "b.png"}) {
       const auto r = cdbenchCli(common + (*dir_ / name).string());
       ASSERT_EQ(r.exitCode, 0) << r.output;
     }
-    const auto run = cdbenchCli("run " + kSnapshotConfig + " --objects 50 --frames " +
-                                std::to_string(kSnapshotFrame + 1) + " --frame-stride " +
-                                std::to_string(kSnapshotFrame) +
-                                " --strategies ours --resolutions 256 --repeats 1 --quiet --out " +
-                                (*dir_ / "run").string());
-    ASSERT_EQ(run.exitCode, 0) << run.output;
   }
   static void TearDownTestSuite() {
     std::error_code ec;
