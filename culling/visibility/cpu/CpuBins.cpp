@@ -191,10 +191,10 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, CpuChain& chai
     chain.offsets[t + 1] += chain.offsets[t];
   }
   chain.binned.resize(chain.offsets[tiles]);
-  std::vector<std::uint32_t> fill(chain.offsets.begin(), chain.offsets.end() - 1);
+  chain.fill.assign(chain.offsets.begin(), chain.offsets.end() - 1);
   for (std::uint32_t i = firstItem; i < endItem; ++i)
     if (!bins.items[i].rect.empty())
-      forTiles(bins.items[i], [&](std::size_t t) { chain.binned[fill[t]++] = i; });
+      forTiles(bins.items[i], [&](std::size_t t) { chain.binned[chain.fill[t]++] = i; });
 }
 
 }  // namespace
@@ -212,14 +212,17 @@ void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
   bins.firstItem[commands] = total;
   bins.items.resize(total);
 
-  // Chains, and each command's pass.
-  bins.chains.clear();
-  std::vector<std::uint32_t> passOf(commands);
+  // Chains, and each command's pass. The chains' lists are kept from one recording to the next:
+  // allocated anew, lists of this size come from fresh pages every time.
+  std::size_t chains = 0;
+  std::vector<std::uint32_t>& passOf = bins.passOf;
+  passOf.resize(commands);
   for (std::uint32_t p = 0; p < recording.passes.size(); ++p) {
     const CpuPass& pass = recording.passes[p];
     for (std::uint32_t i = pass.firstCommand; i < pass.endCommand; ++i) passOf[i] = p;
     if (p == 0 || pass.clears) {
-      CpuChain& chain = bins.chains.emplace_back();
+      if (bins.chains.size() == chains) bins.chains.emplace_back();
+      CpuChain& chain = bins.chains[chains++];
       chain.firstPass = p;
       chain.resolution = pass.raster.resolution;
       constexpr int kBlock = CpuDepthBuffer::kBlock;
@@ -231,15 +234,15 @@ void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
       chain.orderIndependent = pass.raster.orderIndependent;
       chain.clearValue = pass.clearValue;
     }
-    bins.chains.back().endPass = p + 1;
+    bins.chains[chains - 1].endPass = p + 1;
   }
+  bins.chainCount = chains;
 
   forEach(arena, commands, [&](std::size_t i) {
     makeItems(recording, scene, bounds, static_cast<std::uint32_t>(i), passOf[i],
               bins.items.data() + bins.firstItem[i]);
   });
-  forEach(arena, bins.chains.size(),
-          [&](std::size_t c) { binChain(recording, bins, bins.chains[c]); });
+  forEach(arena, chains, [&](std::size_t c) { binChain(recording, bins, bins.chains[c]); });
 }
 
 }  // namespace cdb

@@ -63,6 +63,7 @@ struct CpuChain {
   std::vector<std::uint32_t> offsets;
   std::vector<std::uint32_t> binned;
   std::vector<std::uint32_t> tilesUsed;  // tiles with at least one item, ascending
+  std::vector<std::uint32_t> fill;       // binning's scratch
   [[nodiscard]] std::span<const std::uint32_t> itemsOf(std::uint32_t tile) const {
     return {binned.data() + offsets[tile], binned.data() + offsets[tile + 1]};
   }
@@ -71,7 +72,9 @@ struct CpuChain {
 struct CpuBins {
   std::vector<CpuItem> items;
   std::vector<std::uint32_t> firstItem;  // per command, and one past the last
-  std::vector<CpuChain> chains;
+  std::vector<CpuChain> chains;          // the first chainCount are this recording's
+  std::size_t chainCount = 0;
+  std::vector<std::uint32_t> passOf;     // binning's scratch: each command's pass
 };
 
 // A recording with its bins: what one fetch ran, kept while writes it left pending may still be

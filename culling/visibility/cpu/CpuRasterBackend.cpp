@@ -322,32 +322,32 @@ void CpuRasterBackend::flush() {
   // Where each chain's tiles live: a continued chain in the store that holds it, the last chain
   // (the buffer a later pass may go on in) in the other one, the rest in per-thread scratch.
   const auto& chains = run.bins.chains;
-  const std::size_t last = chains.size() - 1;
-  std::vector<std::uint64_t> chainId(chains.size());
-  std::vector<int> store(chains.size(), -1);
-  std::vector<float> clearValue(chains.size());
-  for (std::size_t c = 0; c < chains.size(); ++c) {
+  const std::size_t chainCount = run.bins.chainCount;
+  const std::size_t last = chainCount - 1;
+  std::vector<ChainPlace>& place = chainPlaces_;
+  place.assign(chainCount, ChainPlace{});
+  for (std::size_t c = 0; c < chainCount; ++c) {
     const bool continued = c == 0 && continues;
-    chainId[c] = continued ? retained_.chainId : nextChainId_++;
-    clearValue[c] = continued ? retained_.clearValue : chains[c].clearValue;
-    if (continued) store[c] = retained_.store;
+    place[c].id = continued ? retained_.chainId : nextChainId_++;
+    place[c].clearValue = continued ? retained_.clearValue : chains[c].clearValue;
+    if (continued) place[c].store = retained_.store;
   }
-  if (store[last] < 0) {
-    store[last] = 1 - retained_.store;
+  if (place[last].store < 0) {
+    place[last].store = 1 - retained_.store;
     const std::size_t tiles = static_cast<std::size_t>(chains[last].tilesX) * chains[last].tilesX;
-    if (stores_[store[last]].size() < tiles) stores_[store[last]].resize(tiles);
+    if (stores_[place[last].store].size() < tiles) stores_[place[last].store].resize(tiles);
   }
 
   units_.clear();
-  for (std::uint32_t c = 0; c < chains.size(); ++c)
+  for (std::uint32_t c = 0; c < chainCount; ++c)
     for (const std::uint32_t t : chains[c].tilesUsed) units_.emplace_back(c, t);
   for (CpuTileWork& w : work_) w = {};
   const CpuAnswers answers(answers_.data());
   const auto runUnit = [&](std::size_t u) {
     const auto [c, t] = units_[u];
-    CpuTileState& state = store[c] >= 0 ? stores_[store[c]][t] : scratch_.local();
-    if (store[c] < 0 || state.chain != chainId[c])
-      startTile(state, chains[c], t, clearValue[c], chainId[c]);
+    const ChainPlace& at = place[c];
+    CpuTileState& state = at.store >= 0 ? stores_[at.store][t] : scratch_.local();
+    if (at.store < 0 || state.chain != at.id) startTile(state, chains[c], t, at.clearValue, at.id);
     evaluateTile(state, CpuScene{*scene_, meshBounds_}, run, c, t, evaluation_, answers,
                  work_.local());
   };
@@ -369,9 +369,9 @@ void CpuRasterBackend::flush() {
   // The last chain's buffer is where a pass may go on; the recording stays while it does.
   if (!(last == 0 && continues)) {
     releaseRetained();
-    retained_.chainId = chainId[last];
-    retained_.clearValue = clearValue[last];
-    retained_.store = store[last];
+    retained_.chainId = place[last].id;
+    retained_.clearValue = place[last].clearValue;
+    retained_.store = place[last].store;
   }
   retained_.runs.emplace_back(open_, static_cast<std::uint32_t>(last));
   open_ = freshRun();

@@ -125,6 +125,14 @@ class CpuRasterBackend final : public VisibilityBackend {
   tbb::enumerable_thread_specific<CpuTileState> scratch_;
   tbb::enumerable_thread_specific<CpuTileWork> work_;
   std::vector<std::shared_ptr<CpuRun>> spareRuns_;
+  // Per chain of a flush: its id, the value it clears to, the store holding its tiles (-1: each
+  // thread's scratch).
+  struct ChainPlace {
+    std::uint64_t id = 0;
+    float clearValue = 1.f;
+    int store = -1;
+  };
+  std::vector<ChainPlace> chainPlaces_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> units_;  // (chain, tile) of a flush
   // storedDepth's replay of one tile, valid until the next flush.
   CpuTileState storedTile_;
