@@ -99,39 +99,41 @@ void readBuffer(CpuRasterBackend& backend, int resolution, Outcome& out) {
 
 constexpr CpuEvaluation kPlain{0, false, false};
 
-// The demand-driven settings compared with the plain evaluation: tiles of one block, of 4 x 4 and
-// of 8 x 8, with and without the early-out, at 1, 2 and 4 threads.
-struct Setting {
-  CpuEvaluation evaluation;
-  int threads;
-};
-std::vector<Setting> demandSettings() {
-  std::vector<Setting> settings;
-  for (int tile : {8, 32, 64})
-    for (bool earlyOut : {false, true})
-      for (int threads : {1, 2, 4}) settings.push_back({{tile, true, earlyOut}, threads});
-  return settings;
-}
+// The demand-driven settings compared with the plain evaluation, one test case each: tiles of one
+// block, of 4 x 4 and of 8 x 8, with and without the early-out; each at 1, 2 and 4 threads.
+using Setting = std::tuple<int, bool>;
 
-// Compares every demand-driven setting with the plain evaluation; returns the plain outcome.
-Outcome expectSameAsPlain(const SceneGeometry& scene, const std::vector<Pose>& poses,
-                          const Stream& stream, bool conservative) {
-  const Outcome plain = run(scene, poses, stream, conservative, kPlain, 1);
-  for (const Setting& s : demandSettings()) {
-    SCOPED_TRACE(testing::Message() << "tile " << s.evaluation.tileSize << ", early-out "
-                                    << s.evaluation.earlyOut << ", " << s.threads << " threads");
-    const Outcome demand = run(scene, poses, stream, conservative, s.evaluation, s.threads);
-    EXPECT_EQ(demand.answers, plain.answers);
-    EXPECT_EQ(demand.buffer, plain.buffer);
-    EXPECT_EQ(demand.counters.queries, plain.counters.queries);
-    EXPECT_EQ(demand.counters.draws, plain.counters.draws);
-    EXPECT_EQ(demand.counters.trianglesDrawn, plain.counters.trianglesDrawn);
-    EXPECT_EQ(demand.counters.fetches, plain.counters.fetches);
-    // The point of it: fewer pixels written than drawing every write.
-    EXPECT_LE(demand.counters.pixelsWritten, plain.counters.pixelsWritten);
+class CpuDemandEvaluation : public testing::TestWithParam<Setting> {
+ protected:
+  // Compares the case's setting at 1, 2 and 4 threads with the plain evaluation; returns the plain
+  // outcome.
+  Outcome expectSameAsPlain(const SceneGeometry& scene, const std::vector<Pose>& poses,
+                            const Stream& stream, bool conservative) const {
+    const auto [tile, earlyOut] = GetParam();
+    const Outcome plain = run(scene, poses, stream, conservative, kPlain, 1);
+    for (int threads : {1, 2, 4}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads");
+      const Outcome demand =
+          run(scene, poses, stream, conservative, CpuEvaluation{tile, true, earlyOut}, threads);
+      EXPECT_EQ(demand.answers, plain.answers);
+      EXPECT_EQ(demand.buffer, plain.buffer);
+      EXPECT_EQ(demand.counters.queries, plain.counters.queries);
+      EXPECT_EQ(demand.counters.draws, plain.counters.draws);
+      EXPECT_EQ(demand.counters.trianglesDrawn, plain.counters.trianglesDrawn);
+      EXPECT_EQ(demand.counters.fetches, plain.counters.fetches);
+      // The point of it: fewer pixels written than drawing every write.
+      EXPECT_LE(demand.counters.pixelsWritten, plain.counters.pixelsWritten);
+    }
+    return plain;
   }
-  return plain;
-}
+};
+
+INSTANTIATE_TEST_SUITE_P(Settings, CpuDemandEvaluation,
+                         testing::Combine(testing::Values(8, 32, 64), testing::Bool()),
+                         [](const auto& param) {
+                           return "tile" + std::to_string(std::get<0>(param.param)) +
+                                  (std::get<1>(param.param) ? "_earlyout" : "_noearlyout");
+                         });
 
 // Both answers occur, and the buffer holds more than its clear value: the comparison decides
 // something.
@@ -212,7 +214,7 @@ Stream cullideDraws(const SceneGeometry& scene, int resolution) {
   };
 }
 
-TEST(CpuDemandEvaluation, CullideDrawsAnswerAsPlainEvaluation) {
+TEST_P(CpuDemandEvaluation, CullideDrawsAnswerAsPlainEvaluation) {
   std::vector<Mesh> meshes;
   for (int o = 0; o < 9; ++o) meshes.push_back(bumpySphere(11 + o, 18 + o % 3, 16));
   const SceneGeometry scene = test::sceneOf(std::move(meshes));
@@ -229,7 +231,7 @@ TEST(CpuDemandEvaluation, CullideDrawsAnswerAsPlainEvaluation) {
 // A wall (a square facing the view) written first, then small spheres scattered over and around
 // it, some in front, some behind, some through it, each tested and written, then each tested
 // again: many tests decided by bounds, and many pieces whose bounds end near a tile's edge.
-TEST(CpuDemandEvaluation, PiecesDecidedByBoundsAnswerAsPlainEvaluation) {
+TEST_P(CpuDemandEvaluation, PiecesDecidedByBoundsAnswerAsPlainEvaluation) {
   for (unsigned seed : {1u, 2u}) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -389,7 +391,7 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene) {
   };
 }
 
-TEST(CpuDemandEvaluation, RandomStreamsAnswerAsPlainEvaluation) {
+TEST_P(CpuDemandEvaluation, RandomStreamsAnswerAsPlainEvaluation) {
   for (unsigned seed : {1u, 2u, 3u, 4u}) {
     std::mt19937 rng(seed * 7919u);
     const SceneGeometry scene = randomScene(rng, 24);
@@ -404,7 +406,7 @@ TEST(CpuDemandEvaluation, RandomStreamsAnswerAsPlainEvaluation) {
 
 // Without the early-out a tile's work depends on nothing another tile does: the counters of work
 // done do not depend on the thread count either.
-TEST(CpuDemandEvaluation, WorkWithoutEarlyOutDoesNotDependOnThreads) {
+TEST(CpuDemandWork, WithoutEarlyOutDoesNotDependOnThreads) {
   std::mt19937 rng(99);
   const SceneGeometry scene = randomScene(rng, 24);
   const std::vector<Pose> poses = posesAround(5, scene.objectCount(), 0.8);
@@ -423,7 +425,7 @@ TEST(CpuDemandEvaluation, WorkWithoutEarlyOutDoesNotDependOnThreads) {
 // Pieces beyond the depth range are clamped to its ends, so a write and a test there have equal
 // keys, and equal is occluded: in front of the near plane in a fresh pass, behind the far plane of
 // a SharedFirst pass (whose clear value lies beyond it). Their key bounds tie too.
-TEST(CpuDemandEvaluation, TiesAtTheEndsOfTheDepthRange) {
+TEST_P(CpuDemandEvaluation, TiesAtTheEndsOfTheDepthRange) {
   const SceneGeometry scene =
       test::sceneOf({test::squareMesh(0, 0, -5, 0.5f), test::squareMesh(0.2f, 0, -4, 0.5f),
                      test::squareMesh(0, 0, 5, 0.5f), test::squareMesh(0.2f, 0, 4, 0.5f)});
@@ -445,7 +447,7 @@ TEST(CpuDemandEvaluation, TiesAtTheEndsOfTheDepthRange) {
   }
 }
 
-TEST(CpuDemandEvaluation, RefusesATileSizeOffTheBlockGrid) {
+TEST(CpuDemandSettings, RefusesATileSizeOffTheBlockGrid) {
   CpuRasterBackend backend;
   for (int size : {-8, 0, 4, 12, 33, 72})
     EXPECT_THROW(backend.setEvaluation({size, true, true}), InputError) << size;

@@ -106,11 +106,17 @@ void drawPending(CpuTileState& state, const CpuScene& scene, CpuPendingWrite& p,
   p.remaining &= ~blocks;
 }
 
+// Whether the pieces of an item answer one by one: the triangles of a batch (a box is one piece
+// whatever it is drawn as).
+bool answersEachTriangle(const CpuItem& item, const CpuPieces& pieces) {
+  return item.answerEach && !pieces.areQuads && item.count > 1;
+}
+
 // Tests an item's pieces against what the tile holds; clears the answers it finds occluded and
 // returns whether any of its answers is still visible.
 bool testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
                 const CpuItem& item, std::uint8_t* visible, CpuAnswers answers, CpuTileWork& work) {
-  if (item.answerEach && !pieces.areQuads && item.count > 1) {
+  if (answersEachTriangle(item, pieces)) {
     // One answer per triangle.
     testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster,
                      item.object);
@@ -225,10 +231,11 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     }
     CpuPieces pieces;
     piecesOf(scene, run, item, state.depth, pieces);
-    // Triangles another tile found occluded are not tested again (with the early-out).
+    // A batch's triangles another tile found occluded are not tested again (with the early-out).
     std::uint8_t visible[kChunkTriangles];
-    for (std::size_t t = 0; t < pieces.count; ++t)
-      visible[t] = !evaluation.earlyOut || answers.visible(item.answer + pieces.offset[t]);
+    if (answersEachTriangle(item, pieces))
+      for (std::size_t t = 0; t < pieces.count; ++t)
+        visible[t] = !evaluation.earlyOut || answers.visible(item.answer + pieces.offset[t]);
     // Against what the tile holds first: occluded there, the pending writes stay pending.
     if (!testPieces(state.depth, pieces, raster, item, visible, answers, work) || !readsPending)
       continue;
