@@ -11,6 +11,7 @@ namespace cdb {
 namespace {
 
 constexpr int kBlock = CpuDepthBuffer::kBlock;
+constexpr std::size_t kMostPending = 256;
 
 PixelRect tileRect(const CpuDepthBuffer& depth) {
   return {depth.pixelX0(), depth.pixelY0(), depth.pixelX1(), depth.pixelY1()};
@@ -209,6 +210,12 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       // At or behind everything stored under it (pending writes only add nearer keys): it
       // changes nothing.
       if (item.kLo >= storedKeys(state.depth, blocks, raster.sign).farthest) continue;
+      // A test looks at every pending write of its tile: a list this long (thousands of node boxes
+      // in one tile at a low resolution) is drawn instead, which leaves the same depths.
+      if (state.pending.size() == kMostPending) {
+        for (CpuPendingWrite& p : state.pending) drawPending(state, scene, p, p.remaining, work);
+        state.pending.clear();
+      }
       state.pending.push_back({blocks, item.kLo, item.kHi, item.object, &run, i});
       continue;
     }
