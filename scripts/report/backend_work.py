@@ -1,5 +1,6 @@
-"""What the visibility backend did per frame, from frames.csv's work counters: pixels rasterised by
-tests and by writes, and, for a backend that evaluates screen tiles on demand (cpu), how many tests of
+"""What the visibility backend did per frame, from frames.csv's work counters: draws and tests issued
+(a chain of them costs a GPU more than their pixels: CULLIDE's ~4n draws per axis against
+cullide_oi's few), pixels rasterised by tests and by writes, and, for a backend that evaluates screen tiles on demand (cpu), how many tests of
 a piece in a tile were decided by bounds or skipped (another tile had found the piece occluded), and how
 many depth writes were ever rasterised. These follow from the scene, the strategy and the resolution,
 not from the machine's speed; they say where the time can go."""
@@ -8,17 +9,17 @@ from collections import defaultdict
 
 from .runs import strategy_order
 
-COUNTERS = ("pixels_written", "pixels_tested", "tile_tests", "tile_tests_by_bounds", "tile_tests_skipped",
+COUNTERS = ("draws", "queries", "pixels_written", "pixels_tested", "tile_tests", "tile_tests_by_bounds", "tile_tests_skipped",
             "tile_writes", "tile_writes_drawn")
 
 
 def work_rows(run, column_of):
     """Per (strategy, column): the mean per frame of each counter, and the frames; only strategies that
-    rasterise (some pixel counted). `column_of(frame)` gives a frame's column (resolution or objects)."""
+    draw. `column_of(frame)` gives a frame's column (resolution or objects)."""
     sums = defaultdict(lambda: defaultdict(float))
     frames = defaultdict(int)
     for f in run.frames:
-        if not f.get("pixels_written") and not f.get("pixels_tested"):
+        if not f.get("draws"):
             continue
         key = (f["strategy"], column_of(f))
         frames[key] += 1
@@ -49,15 +50,16 @@ def work_markdown(run, layout, column):
     unit = "pixels" if axis == "resolution" else "objects"
     out = [f"Per frame at {column} {unit} ({layout.describe_fixed()}), mean over the frames measured (work counters of frames.csv; they do "
            f"not depend on the machine's speed):", ""]
-    header = "| strategy | pixels written | pixels tested |"
-    rule = "|---|---:|---:|"
+    header = "| strategy | draws | tests | pixels written | pixels tested |"
+    rule = "|---|---:|---:|---:|---:|"
     if tiles:
         header += " tile tests | decided by bounds | skipped (occluded elsewhere) | tile writes | writes rasterised |"
         rule += "---:|---:|---:|---:|---:|"
     out += [header, rule]
     for s in strategy_order(at):
         v, _ = at[s]
-        line = f"| {s} | {_millions(v['pixels_written'])} | {_millions(v['pixels_tested'])} |"
+        line = (f"| {s} | {v['draws']:,.0f} | {_millions(v['queries'])} | {_millions(v['pixels_written'])} | "
+                f"{_millions(v['pixels_tested'])} |")
         if tiles:
             line += (f" {_millions(v['tile_tests'])} | {_share(v['tile_tests_by_bounds'], v['tile_tests'])} | "
                      f"{_share(v['tile_tests_skipped'], v['tile_tests'])} | {_millions(v['tile_writes'])} | "

@@ -739,3 +739,37 @@ class ReportOnBadInput(InFreshResultDir):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class BackendWork(unittest.TestCase):
+    """The work of the backend per strategy in an environment's section, from frames.csv's counters."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = Path(self.tmp.name) / "run"
+        rows = []
+        for frame in range(2):
+            # cullide: 400 draws, 60% of its tile tests decided by bounds; ours: 90 draws; fcl draws nothing.
+            rows.append(frame_row("env1", "cullide", 800, 50, 0, frame, 10.0, 1, backend="cpu", draws=400,
+                                  queries=300, pixels_written=2_000_000, pixels_tested=100_000, tile_tests=1000,
+                                  tile_tests_by_bounds=600, tile_tests_skipped=100, tile_writes=800,
+                                  tile_writes_drawn=200))
+            rows.append(frame_row("env1", "ours", 800, 50, 0, frame, 5.0, 2, backend="cpu", draws=90 + frame * 20,
+                                  queries=50, pixels_written=500_000, pixels_tested=20_000, tile_tests=300,
+                                  tile_tests_by_bounds=150, tile_tests_skipped=30, tile_writes=400,
+                                  tile_writes_drawn=40))
+            rows.append(frame_row("env1", "fcl", 0, 50, 0, frame, 1.0, 0, backend="cpu"))
+        write_run(self.dir / "env1", "env1", rows, backend="cpu")
+        run_report(self.dir)
+        self.report = (self.dir / "REPORT.md").read_text()
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_a_row_per_strategy_that_draws_with_its_shares(self):
+        section = self.report[self.report.index("### Work of the visibility backend"):]
+        section = section[:section.index("\n### ")]
+        self.assertIn("| cullide | 400 | 300 | 2.00M | 0.10M | 1,000 | 60% | 10% | 800 | 25% |", section)
+        # ours' draws are the mean of its frames' (90 and 110).
+        self.assertIn("| ours | 100 | 50 | 0.50M | 20,000 | 300 | 50% | 10% | 400 | 10% |", section)
+        self.assertNotIn("| fcl |", section)
