@@ -39,6 +39,7 @@ inline void buffer(GLuint id) { glDeleteBuffers(1, &id); }
 inline void vertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
 inline void framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 inline void renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
+inline void texture(GLuint id) { glDeleteTextures(1, &id); }
 inline void program(GLuint id) { glDeleteProgram(id); }
 inline void shader(GLuint id) { glDeleteShader(id); }
 }  // namespace gldelete
@@ -47,6 +48,7 @@ using GlBuffer = GlHandle<gldelete::buffer>;
 using GlVertexArray = GlHandle<gldelete::vertexArray>;
 using GlFramebuffer = GlHandle<gldelete::framebuffer>;
 using GlRenderbuffer = GlHandle<gldelete::renderbuffer>;
+using GlTexture = GlHandle<gldelete::texture>;
 using GlProgramName = GlHandle<gldelete::program>;
 using GlShaderName = GlHandle<gldelete::shader>;
 

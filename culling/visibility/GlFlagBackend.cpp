@@ -1,5 +1,6 @@
 #include "culling/visibility/GlFlagBackend.h"
 
+#include <algorithm>
 #include <string>
 
 #include "core/Errors.h"
@@ -10,6 +11,7 @@ namespace cdb {
 
 namespace {
 constexpr std::size_t kFloatsPerMatrix = 16;
+constexpr std::size_t kWordsPerSegment = 4;
 }  // namespace
 
 GlFlagBackend::GlFlagBackend(HeadlessGlContext& context, const VisibilityOptions& options)
@@ -17,7 +19,8 @@ GlFlagBackend::GlFlagBackend(HeadlessGlContext& context, const VisibilityOptions
       pipeline_(context, PipelinePrograms::Flags),
       flags_(kItemFlagBinding),
       listedTriangles_(kListedTriangleBinding, sizeof(std::uint32_t)),
-      boxMatrices_(kBoxMatrixBinding, kFloatsPerMatrix * sizeof(float)) {
+      boxMatrices_(kBoxMatrixBinding, kFloatsPerMatrix * sizeof(float)),
+      passSegments_(kPassSegmentBinding, kWordsPerSegment * sizeof(std::uint32_t)) {
   setOptions(options);
 }
 
@@ -32,6 +35,8 @@ GlFlagBackend::~GlFlagBackend() {
 std::string GlFlagBackend::renderer() const { return context_->info().glRenderer; }
 
 void GlFlagBackend::setOptions(const VisibilityOptions& options) {
+  // What an order-independent pass gathered is drawn with the options it was issued under.
+  if (orderIndependent_) drawPassTests();
   pipeline_.setConservative(options.conservative);
   pipeline_.setRawDepthOffset(options.rawDepthOffset);
 }
@@ -41,11 +46,21 @@ void GlFlagBackend::attachScene(const SceneGeometry& scene) { pipeline_.attach(s
 void GlFlagBackend::setPoses(std::span<const Pose> poses) { pipeline_.uploadPoses(poses); }
 
 void GlFlagBackend::beginPass(const ViewSpec& view, DepthUse depth) {
+  // The previous pass' tests are answered against its buffers, before the clear. Writes that no
+  // test of theirs read are not drawn.
+  if (orderIndependent_) drawPassTests();
+  orderIndependent_ = false;
+  passWrites_.clear();
+  passTests_.clear();
   const DepthPassSetup setup = pipeline_.beginCheckedPass(view, depth);
+  orderIndependent_ = depth == DepthUse::OrderIndependent;
+  testedInPass_ = false;
+  writesDrawn_ = 0;
   // Another pipeline on the context may have bound its own buffers since the last pass.
   flags_.bind();
   listedTriangles_.bind();
   boxMatrices_.bind();
+  passSegments_.bind();
   ++counters_.passes;
   if (setup.clear) ++counters_.depthClears;
 }
@@ -142,9 +157,112 @@ void GlFlagBackend::drawBoxes(ObjectId object, std::span<const OrientedBox> boxe
   countDraw(static_cast<std::uint64_t>(cube.triangleCount) * boxes.size());
 }
 
+void GlFlagBackend::PassBatch::clear() {
+  segments.clear();
+  triangles.clear();
+  listed.clear();
+  boxes.clear();
+  triangleCount = 0;
+}
+
+void GlFlagBackend::addRun(PassBatch& batch, ObjectId object, std::uint32_t first,
+                           std::uint32_t count, std::uint32_t item, bool itemPerTriangle) {
+  constexpr auto kSegment = static_cast<std::uint32_t>(kPassSegmentTriangles);
+  for (std::uint32_t done = 0; done < count; done += kSegment) {
+    const std::uint32_t n = std::min(kSegment, count - done);
+    batch.segments.insert(batch.segments.end(),
+                          {first + done, object, item + (itemPerTriangle ? done : 0),
+                           itemPerTriangle ? kPassPerTriangleBit : 0u});
+    batch.triangles.push_back(static_cast<std::uint8_t>(n));
+  }
+  batch.triangleCount += count;
+}
+
+void GlFlagBackend::addListed(PassBatch& batch, ObjectId object, std::uint32_t item) {
+  constexpr auto kSegment = static_cast<std::uint32_t>(kPassSegmentTriangles);
+  const auto base = static_cast<std::uint32_t>(batch.listed.size());
+  const auto count = static_cast<std::uint32_t>(listScratch_.size());
+  batch.listed.insert(batch.listed.end(), listScratch_.begin(), listScratch_.end());
+  for (std::uint32_t done = 0; done < count; done += kSegment) {
+    const std::uint32_t n = std::min(kSegment, count - done);
+    batch.segments.insert(batch.segments.end(), {base + done, object, item + done,
+                                                 kPassPerTriangleBit | kPassListedBit});
+    batch.triangles.push_back(static_cast<std::uint8_t>(n));
+  }
+  batch.triangleCount += count;
+}
+
+void GlFlagBackend::addBox(PassBatch& batch, ObjectId object, const OrientedBox& box,
+                           std::uint32_t item) {
+  const GlMeshSlot& cube = pipeline_.buffers().cube();
+  const auto index = static_cast<std::uint32_t>(batch.boxes.size() / kFloatsPerMatrix);
+  const Eigen::Matrix4f m = boxMatrix(box);
+  batch.boxes.insert(batch.boxes.end(), m.data(), m.data() + kFloatsPerMatrix);
+  batch.segments.insert(batch.segments.end(),
+                        {cube.firstTriangle, object, item, (index + 1) << kPassBoxShift});
+  batch.triangles.push_back(static_cast<std::uint8_t>(cube.triangleCount));
+  batch.triangleCount += cube.triangleCount;
+}
+
+GlFlagBackend::PassBatch& GlFlagBackend::passWrites() {
+  if (testedInPass_) throw RunError("a write after a test in an order-independent pass");
+  return passWrites_;
+}
+
+GlFlagBackend::PassBatch& GlFlagBackend::passTests() {
+  if (!testedInPass_) {
+    drawPassWrites();
+    testedInPass_ = true;
+  }
+  return passTests_;
+}
+
+GlVisibilityPipeline::PassBases GlFlagBackend::uploadPassBatch(const PassBatch& batch) {
+  GlVisibilityPipeline::PassBases bases;
+  bases.segment = static_cast<std::int32_t>(
+      passSegments_.append(batch.segments.data(), batch.segmentCount()));
+  if (!batch.listed.empty())
+    bases.listed = static_cast<std::int32_t>(
+        listedTriangles_.append(batch.listed.data(), batch.listed.size()));
+  if (!batch.boxes.empty())
+    bases.box = static_cast<std::int32_t>(
+        boxMatrices_.append(batch.boxes.data(), batch.boxes.size() / kFloatsPerMatrix));
+  return bases;
+}
+
+void GlFlagBackend::drawPassBatch(const PassBatch& batch, PassStage stage,
+                                  const GlVisibilityPipeline::PassBases& bases) {
+  pipeline_.drawPass(stage, bases, batch.triangles);
+  countDraw(batch.triangleCount);
+}
+
+void GlFlagBackend::drawPassWrites() {
+  if (writesDrawn_ == passWrites_.segmentCount()) return;
+  // d2 depends on every write's id1: later writes redraw them all.
+  if (writesDrawn_ > 0) pipeline_.clearPassBuffers();
+  const auto bases = uploadPassBatch(passWrites_);
+  drawPassBatch(passWrites_, PassStage::Nearest, bases);
+  drawPassBatch(passWrites_, PassStage::Others, bases);
+  writesDrawn_ = passWrites_.segmentCount();
+}
+
+void GlFlagBackend::drawPassTests() {
+  drawPassWrites();
+  if (passTests_.segmentCount() == 0) return;
+  drawPassBatch(passTests_, PassStage::Test, uploadPassBatch(passTests_));
+  passTests_.clear();
+}
+
 QueryIndex GlFlagBackend::queryRange(const MeshRange& range) {
   pipeline_.checkRange(range);
   const std::uint32_t item = flags_.reserve(1);
+  if (orderIndependent_) {
+    const GlMeshSlot& slot = pipeline_.buffers().slotOf(range.object);
+    addRun(passTests(), range.object, slot.firstTriangle + range.firstTriangle,
+           range.triangleCount, item, false);
+    ++counters_.queries;
+    return item;
+  }
   drawRange(range, DrawRole::Test, item, false);
   ++counters_.queries;
   return item;
@@ -153,7 +271,10 @@ QueryIndex GlFlagBackend::queryRange(const MeshRange& range) {
 QueryIndex GlFlagBackend::queryBox(ObjectId object, const OrientedBox& localBox) {
   pipeline_.checkedSlot(object);
   const std::uint32_t item = flags_.reserve(1);
-  drawBox(object, localBox, DrawRole::Test, item);
+  if (orderIndependent_)
+    addBox(passTests(), object, localBox, item);
+  else
+    drawBox(object, localBox, DrawRole::Test, item);
   ++counters_.queries;
   return item;
 }
@@ -162,7 +283,12 @@ QueryIndex GlFlagBackend::queryTriangles(const MeshRange& range) {
   pipeline_.checkRange(range);
   if (range.triangleCount == 0) return kNoQuery;
   const std::uint32_t item = flags_.reserve(range.triangleCount);
-  drawRange(range, DrawRole::Test, item, true);
+  if (orderIndependent_)
+    addRun(passTests(), range.object,
+           pipeline_.buffers().slotOf(range.object).firstTriangle + range.firstTriangle,
+           range.triangleCount, item, true);
+  else
+    drawRange(range, DrawRole::Test, item, true);
   counters_.queries += range.triangleCount;
   return item;
 }
@@ -174,7 +300,13 @@ QueryIndex GlFlagBackend::queryTriangles(ObjectId object,
   // Checked before any item is taken, so that a bad list leaves the round as it was.
   const bool consecutive = gatherList(object, triangles);
   const std::uint32_t item = flags_.reserve(triangles.size());
-  drawList(object, triangles, consecutive, DrawRole::Test, item);
+  if (orderIndependent_ && consecutive)
+    addRun(passTests(), object, listScratch_[0], static_cast<std::uint32_t>(listScratch_.size()),
+           item, true);
+  else if (orderIndependent_)
+    addListed(passTests(), object, item);
+  else
+    drawList(object, triangles, consecutive, DrawRole::Test, item);
   counters_.queries += triangles.size();
   return item;
 }
@@ -183,38 +315,72 @@ QueryIndex GlFlagBackend::queryBoxes(ObjectId object, std::span<const OrientedBo
   pipeline_.checkedSlot(object);
   if (localBoxes.empty()) return kNoQuery;
   const std::uint32_t item = flags_.reserve(localBoxes.size());
-  drawBoxes(object, localBoxes, DrawRole::Test, item);
+  if (orderIndependent_) {
+    PassBatch& tests = passTests();
+    for (std::size_t i = 0; i < localBoxes.size(); ++i)
+      addBox(tests, object, localBoxes[i], item + static_cast<std::uint32_t>(i));
+  } else {
+    drawBoxes(object, localBoxes, DrawRole::Test, item);
+  }
   counters_.queries += localBoxes.size();
   return item;
 }
 
 void GlFlagBackend::writeRange(const MeshRange& range) {
   pipeline_.checkRange(range);
+  if (orderIndependent_) {
+    PassBatch& writes = passWrites();
+    addRun(writes, range.object,
+           pipeline_.buffers().slotOf(range.object).firstTriangle + range.firstTriangle,
+           range.triangleCount, 0, false);
+    return;
+  }
   drawRange(range, DrawRole::Write, 0, false);
 }
 
 void GlFlagBackend::writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) {
   pipeline_.checkedSlot(object);
+  if (orderIndependent_) {
+    PassBatch& writes = passWrites();
+    if (gatherList(object, triangles) && !triangles.empty())
+      addRun(writes, object, listScratch_[0], static_cast<std::uint32_t>(listScratch_.size()), 0,
+             false);
+    else
+      addListed(writes, object, 0);
+    return;
+  }
   if (triangles.empty()) return;
   drawList(object, triangles, gatherList(object, triangles), DrawRole::Write, 0);
 }
 
 void GlFlagBackend::writeBox(ObjectId object, const OrientedBox& localBox) {
   pipeline_.checkedSlot(object);
+  if (orderIndependent_) {
+    addBox(passWrites(), object, localBox, 0);
+    return;
+  }
   drawBox(object, localBox, DrawRole::Write, 0);
 }
 
 void GlFlagBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
   pipeline_.checkedSlot(object);
+  if (orderIndependent_) {
+    PassBatch& writes = passWrites();
+    for (const OrientedBox& box : localBoxes) addBox(writes, object, box, 0);
+    return;
+  }
   if (localBoxes.empty()) return;
   drawBoxes(object, localBoxes, DrawRole::Write, 0);
 }
 
 void GlFlagBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
+  // Writes are drawn by a fetch too, so that tests after it in the pass read them.
+  if (orderIndependent_) drawPassTests();
   if (flags_.used() > 0) ++counters_.fetches;
   flags_.fetch(fullyVisible);
   listedTriangles_.rewind();
   boxMatrices_.rewind();
+  passSegments_.rewind();
 }
 
 }  // namespace cdb

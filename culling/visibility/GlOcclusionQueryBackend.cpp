@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/Errors.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
 #include "render/HeadlessGlContext.h"
 
 namespace cdb {
@@ -27,6 +28,17 @@ void GlOcclusionQueryBackend::setPoses(std::span<const Pose> poses) {
 }
 
 void GlOcclusionQueryBackend::beginPass(const ViewSpec& view, DepthUse depth) {
+  // An occlusion query counts the samples that pass the depth test of one buffer; the pass would
+  // need a second depth and a per-pixel choice between them, which gl-flags draws.
+  if (depth == DepthUse::OrderIndependent) {
+    std::string offered;
+    const auto& registry = VisibilityBackendRegistry::builtin();
+    for (const auto& name : registry.names())
+      if (registry.traits(name).orderIndependent) offered += (offered.empty() ? "" : ", ") + name;
+    throw InputError(
+        "the gl-queries backend offers no order-independent pass (cullide_oi needs one); "
+        "backends that do: " + offered);
+  }
   const DepthPassSetup setup = pipeline_.beginCheckedPass(view, depth);
   ++counters_.passes;
   if (setup.clear) ++counters_.depthClears;

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <string>
+#include <span>
+#include <utility>
 
 #include "core/Errors.h"
 #include "culling/visibility/FlagShaders.h"
@@ -26,6 +29,10 @@ GlVisibilityPipeline::GlVisibilityPipeline(HeadlessGlContext& context, PipelineP
       program_[conservative][0] = ownedPrograms_.back().get();
       ownedPrograms_.push_back(makeFlagTestProgram(conservative != 0));
       program_[conservative][1] = ownedPrograms_.back().get();
+      for (PassStage stage : {PassStage::Nearest, PassStage::Others, PassStage::Test}) {
+        ownedPrograms_.push_back(makePassProgram(stage, conservative != 0));
+        passProgram_[conservative][static_cast<int>(stage)] = ownedPrograms_.back().get();
+      }
     }
   }
   GLint renderbufferMax = 0, viewportMax[2] = {0, 0};
@@ -96,28 +103,37 @@ void GlVisibilityPipeline::checkRange(const MeshRange& range) const {
 }
 
 DepthPassSetup GlVisibilityPipeline::beginCheckedPass(const ViewSpec& view, DepthUse depth) {
-  if (depth == DepthUse::OrderIndependent)
-    throw InputError("this GL backend offers no order-independent pass (cullide_oi runs on cpu)");
+  if (depth == DepthUse::OrderIndependent && programs_ != PipelinePrograms::Flags)
+    throw InputError("order-independent passes need the flag programs (gl-flags)");
   if (depth == DepthUse::SharedSecond &&
       (lastDepth_ != DepthUse::SharedFirst || lastResolution_ != view.resolution))
     throw RunError("a SharedSecond pass must follow a SharedFirst pass of the same resolution");
   const DepthPassSetup setup = makeDepthPassSetup(view, depth);
-  beginPass(setup);
+  beginPass(setup, depth == DepthUse::OrderIndependent);
   lastDepth_ = depth;
   lastResolution_ = view.resolution;
   return setup;
 }
 
-void GlVisibilityPipeline::beginPass(const DepthPassSetup& setup) {
+void GlVisibilityPipeline::beginPass(const DepthPassSetup& setup, bool orderIndependent) {
   if (!buffers_.attached()) throw RunError("a visibility pass began before a scene was attached");
   if (setup.resolution < 1 || setup.resolution > maxResolution_)
     throw InputError("resolution " + std::to_string(setup.resolution) + " is outside 1.." +
                      std::to_string(maxResolution_) + " (the GL's largest framebuffer)");
-  ensureTarget(setup.resolution);
+  if (orderIndependent && programs_ != PipelinePrograms::Flags)
+    throw InputError("order-independent passes need the flag programs (gl-flags)");
+  if (orderIndependent)
+    passTarget_.ensure(setup.resolution);
+  else
+    ensureTarget(setup.resolution);
   setup_ = setup;
   inPass_ = true;
+  orderIndependent_ = orderIndependent;
   applyPassState();
-  if (setup.clear) {
+  if (orderIndependent) {
+    passTarget_.clear(static_cast<GLfloat>(setup.clearDepth));
+    role_ = DrawRole::None;
+  } else if (setup.clear) {
     glDepthMask(GL_TRUE);  // clears obey the depth write mask
     const auto value = static_cast<GLfloat>(setup.clearDepth);
     glClearBufferfv(GL_DEPTH, 0, &value);
@@ -126,7 +142,8 @@ void GlVisibilityPipeline::beginPass(const DepthPassSetup& setup) {
 }
 
 void GlVisibilityPipeline::applyPassState() {
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER,
+                    orderIndependent_ ? passTarget_.nearestFramebuffer() : framebuffer_.get());
   glViewport(0, 0, setup_.resolution, setup_.resolution);
   glEnable(GL_DEPTH_TEST);
   // Depths are clamped into the pass' part of the range: geometry beyond the near or far plane is
@@ -138,10 +155,18 @@ void GlVisibilityPipeline::applyPassState() {
   buffers_.bind(pulled());
   const Eigen::Matrix4f worldToScreen = setup_.worldToScreen.cast<float>();
   const Eigen::Matrix4f worldToClip = setup_.worldToClip.cast<float>();
-  const GLuint* programs = program_[conservative_ ? 1 : 0];
-  for (int p = 0; p < 2; ++p) {
-    const GLuint program = programs[p];
-    if (p == 1 && program == programs[0]) break;  // one program for both roles
+  const GLuint* roles = program_[conservative_ ? 1 : 0];
+  const GLuint* stages = passProgram_[conservative_ ? 1 : 0];
+  // Each program once (Queries: one for both roles; no pass programs), with the side it draws
+  // for: +1 tests, -1 writes.
+  std::pair<GLuint, bool> programs[5];
+  std::size_t count = 0;
+  programs[count++] = {roles[0], false};
+  if (roles[1] != roles[0]) programs[count++] = {roles[1], true};
+  if (stages[0] != 0)
+    for (PassStage stage : {PassStage::Nearest, PassStage::Others, PassStage::Test})
+      programs[count++] = {stages[static_cast<int>(stage)], stage == PassStage::Test};
+  for (const auto& [program, test] : std::span(programs, count)) {
     if (conservative_) {
       glProgramUniformMatrix4fv(program, u::kWorldTo, 1, GL_FALSE, worldToScreen.data());
       // The epsilon is in stored-depth units; the shader works in view depth t.
@@ -150,8 +175,10 @@ void GlVisibilityPipeline::applyPassState() {
                                             std::abs(setup_.depthFar - setup_.depthNear)));
       glProgramUniform1f(program, u::kGrowPx, static_cast<float>(0.5 + setup_.coverageMarginPx));
       glProgramUniform1f(program, u::kResolution, static_cast<float>(setup_.resolution));
+      glProgramUniform1f(program, u::kSide, test ? 1.f : -1.f);
     } else {
       glProgramUniformMatrix4fv(program, u::kWorldTo, 1, GL_FALSE, worldToClip.data());
+      glProgramUniform1f(program, u::kNdcOffset, test ? static_cast<float>(rawDepthOffset_) : 0.f);
     }
   }
   currentProgram_ = 0;
@@ -200,6 +227,39 @@ void GlVisibilityPipeline::applyFlagDraw(const FlagDraw& draw) {
   glUniform1i(f::kBoxBase, draw.boxBase);
   flagDraw_ = draw;
   flagDrawSet_ = true;
+}
+
+void GlVisibilityPipeline::drawPass(PassStage stage, const PassBases& bases,
+                                    std::span<const std::uint8_t> segmentTriangles) {
+  useProgram(passProgram_[conservative_ ? 1 : 0][static_cast<int>(stage)]);
+  passTarget_.bindFor(stage);
+  if (stage == PassStage::Test) {
+    // Each fragment compares itself with the pass' buffers; nothing is stored but flags.
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+  } else {
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+  }
+  namespace p = pass_uniform;
+  glUniform1i(p::kSegmentBase, bases.segment);
+  glUniform1i(p::kListedBase, bases.listed);
+  glUniform1i(p::kBoxBase, bases.box);
+  constexpr GLint kSegmentVertices = kConservativeVerticesPerTriangle * kPassSegmentTriangles;
+  if (segmentTriangles.size() > static_cast<std::size_t>(INT32_MAX / kSegmentVertices))
+    throw RunError("an order-independent draw of " + std::to_string(segmentTriangles.size()) +
+                   " segments is too large for one draw");
+  runFirsts_.clear();
+  runCounts_.clear();
+  for (std::size_t s = 0; s < segmentTriangles.size(); ++s) {
+    runFirsts_.push_back(static_cast<GLint>(kSegmentVertices * s));
+    runCounts_.push_back(static_cast<GLsizei>(kConservativeVerticesPerTriangle * segmentTriangles[s]));
+  }
+  glMultiDrawArrays(GL_TRIANGLES, runFirsts_.data(), runCounts_.data(),
+                    static_cast<GLsizei>(runFirsts_.size()));
+  // The next role-based draw sets its state again.
+  role_ = DrawRole::None;
 }
 
 void GlVisibilityPipeline::drawSegments(std::uint32_t first, std::uint32_t count) {

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "culling/visibility/DepthPassSetup.h"
+#include "culling/visibility/FlagShaders.h"
+#include "culling/visibility/GlPassTarget.h"
 #include "culling/visibility/GlQueryPool.h"
 #include "culling/visibility/GlSceneBuffers.h"
 #include "culling/visibility/OcclusionShaders.h"
@@ -27,7 +29,8 @@ enum class DrawRole : std::uint8_t { None, Test, Write };
 //  Queries: one program per mode for tests and writes (an occlusion query counts a test's samples).
 //  Flags:   a test program and a write program per mode (FlagShaders): a test sets its item's
 //           flag; triangles are pulled from the storage buffers in both modes, and a draw may be a
-//           batch (a triangle list, instanced boxes).
+//           batch (a triangle list, instanced boxes). Also the three programs per mode of
+//           order-independent passes (FlagShaders.h, drawPass).
 enum class PipelinePrograms : std::uint8_t { Queries, Flags };
 
 // The batch uniforms of a Flags pipeline's draw (FlagShaders.h says what they mean).
@@ -62,8 +65,9 @@ class GlVisibilityPipeline {
 
   // Binds the framebuffer (re-created when the resolution changes), viewport, depth range and
   // programs for `setup`, and clears when it says so. Throws InputError on a resolution the GL
-  // cannot render at.
-  void beginPass(const DepthPassSetup& setup);
+  // cannot render at. `orderIndependent` (Flags programs only): the pass draws with drawPass into
+  // the pass' own buffers (GlPassTarget), which the clear clears.
+  void beginPass(const DepthPassSetup& setup, bool orderIndependent = false);
   [[nodiscard]] bool inPass() const { return inPass_; }
   [[nodiscard]] int maxResolution() const { return maxResolution_; }
 
@@ -73,6 +77,7 @@ class GlVisibilityPipeline {
   void checkRange(const MeshRange& range) const;
   // makeDepthPassSetup and beginPass, after checking that a SharedSecond pass follows a
   // SharedFirst pass of the same resolution (it relies on that pass' clear; RunError otherwise).
+  // An OrderIndependent pass needs the Flags programs (InputError otherwise).
   DepthPassSetup beginCheckedPass(const ViewSpec& view, DepthUse depth);
 
   void setRole(DrawRole role) {
@@ -132,6 +137,18 @@ class GlVisibilityPipeline {
                           static_cast<GLsizei>(instances));
   }
 
+  // An order-independent pass' draw (Flags programs, in an order-independent pass): segments
+  // [0, segmentTriangles.size()) of the table at `bases.segment` of the segment buffer, segment s
+  // holding segmentTriangles[s] triangles (FlagShaders.h), drawn for `stage` with its buffers and
+  // depth state; one multi-draw call.
+  struct PassBases {
+    std::int32_t segment = 0, listed = 0, box = 0;
+  };
+  void drawPass(PassStage stage, const PassBases& bases,
+                std::span<const std::uint8_t> segmentTriangles);
+  // Clears the order-independent pass' buffers again, as its beginPass did.
+  void clearPassBuffers() { passTarget_.clear(static_cast<float>(setup_.clearDepth)); }
+
   std::uint32_t beginQuery() { return queries_.begin(); }
   void endQuery() { queries_.end(); }
   [[nodiscard]] std::size_t pendingQueries() const { return queries_.pending(); }
@@ -160,6 +177,7 @@ class GlVisibilityPipeline {
   PipelinePrograms programs_;
   std::vector<GlProgramName> ownedPrograms_;
   GLuint program_[2][2] = {};  // [conservative][test]: Queries uses one program for both roles
+  GLuint passProgram_[2][3] = {};  // [conservative][PassStage], Flags only
   GLuint currentProgram_ = 0;
   GlFramebuffer framebuffer_;
   GlRenderbuffer depth_;
@@ -167,6 +185,8 @@ class GlVisibilityPipeline {
   int maxResolution_ = 0;
   GlSceneBuffers buffers_;
   GlQueryPool queries_;
+  GlPassTarget passTarget_;
+  bool orderIndependent_ = false;  // the current pass
 
   bool conservative_ = true;
   double rawDepthOffset_ = 0.0;

@@ -32,12 +32,13 @@ vec3 pulledVertex(int triangle, int corner) {
 constexpr const char* kRawVertex = R"(
 layout(location = 2) uniform mat4 uWorldToClip;
 layout(location = 3) uniform float uNdcOffset;
-vec4 rawClipPosition(mat4 local, vec3 position) {
-  vec4 clip = uWorldToClip * (uModels[uObject] * (local * vec4(position, 1.0)));
+vec4 rawClipPositionOf(int object, mat4 local, vec3 position) {
+  vec4 clip = uWorldToClip * (uModels[object] * (local * vec4(position, 1.0)));
   // Tests are pushed away from the viewer by the thesis' small offset (NDC z grows along the view
   // in both depth orders; glDepthRange does the reversing).
   return vec4(clip.xy, clip.z + uNdcOffset, 1.0);
 }
+vec4 rawClipPosition(mat4 local, vec3 position) { return rawClipPositionOf(uObject, local, position); }
 )";
 
 constexpr const char* kRawQueryMain = R"(

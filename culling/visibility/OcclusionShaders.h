@@ -30,9 +30,10 @@ inline constexpr GLuint kIndexBinding = 2;        // the shared index buffer, 3 
 inline constexpr int kConservativeVerticesPerTriangle = 3;
 
 // A vertex shader's start: the version line, the uniforms above, pulledVertex(triangle, corner)
-// (a corner of a triangle of the shared buffers) and, raw, rawClipPosition(local, position) or,
-// conservative, conservativeCorner(toScreen, triangle, corner) (a corner of the region drawn for a
-// triangle, with its outputs). A main() of the caller's follows.
+// (a corner of a triangle of the shared buffers) and, raw, rawClipPosition(local, position) (of
+// the object uObject; rawClipPositionOf(object, local, position) of another) or, conservative,
+// conservativeCorner(toScreen, triangle, corner) (a corner of the region drawn for a triangle, with
+// its outputs). A main() of the caller's follows.
 [[nodiscard]] std::string occlusionVertexHead(bool conservative);
 // A fragment shader's start: the version line and, conservative, coversPixel(gl_FragCoord.xy) on
 // the vertex shader's outputs.

@@ -22,8 +22,8 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           });
     r.add("gl-flags",
           "OpenGL, a batch of tests in one draw whose failing fragments set their piece's flag in a "
-          "storage buffer; one read-back per fetch",
-          {.needsGl = true},
+          "storage buffer; one read-back per fetch; an order-independent pass in three draws",
+          {.needsGl = true, .orderIndependent = true},
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlFlagBackend>(resources.gl(), options);
           });
