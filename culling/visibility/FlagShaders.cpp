@@ -120,22 +120,23 @@ void main() {
 }
 )";
 
-// The comparison a Fresh pass' depth test makes (GEQUAL: at or behind = occluded), on the
-// fragment's depth clamped into the range as depth clamping does, against the nearest depth
-// written by every object but this one.
+// The test draw's depth test is a Fresh pass' (early, GEQUAL: at or behind = occluded) against
+// d1, so only fragments at or behind d1 are shaded. Such a fragment is occluded unless the nearest
+// depth there is its own object's, in which case it is compared with d2 (d2 >= d1: a fragment in
+// front of d1 is in front of both), on its depth clamped into the range as depth clamping does.
 constexpr const char* kPassTestFragment = R"(
+layout(early_fragment_tests) in;
 flat in int vItem;
 flat in uint vObject;
 layout(binding = 0) uniform usampler2D uNearestObject;
-layout(binding = 1) uniform sampler2D uNearestDepth;
 layout(binding = 2) uniform sampler2D uOthersDepth;
 layout(std430, binding = 5) writeonly buffer ItemFlags { uint uFlags[]; };
 void main() {
   if (!covers()) return;
   ivec2 p = ivec2(gl_FragCoord.xy);
-  float stored = texelFetch(uNearestObject, p, 0).r == vObject ? texelFetch(uOthersDepth, p, 0).r
-                                                               : texelFetch(uNearestDepth, p, 0).r;
-  if (clamp(gl_FragCoord.z, 0.0, 1.0) >= stored) uFlags[vItem] = 1u;
+  if (texelFetch(uNearestObject, p, 0).r != vObject ||
+      clamp(gl_FragCoord.z, 0.0, 1.0) >= texelFetch(uOthersDepth, p, 0).r)
+    uFlags[vItem] = 1u;
 }
 )";
 

@@ -51,9 +51,11 @@ inline constexpr GLuint kItemFlagBinding = 5;        // uint per item: 1 = not f
 //
 // Draw 1 (nearest): depth test LESS with writes into the nearest depth d1, and the object into an
 // R32UI colour attachment (id1). Draw 2 (others): the same into a second depth buffer d2, the
-// fragments of the object id1 at their pixel discarded. Tests: no depth test; a fragment of object
-// i sets its item's flag where its depth is not in front of (id1 == i ? d2 : d1). Rasterisation,
-// conservative coverage and depths are the other programs' (OcclusionShaders).
+// fragments of the object id1 at their pixel discarded. Tests: a fragment of object i sets its
+// item's flag where its depth is not in front of (id1 == i ? d2 : d1); d1 is compared by the depth
+// test of a Fresh pass' tests (early, GEQUAL, no writes), d2 by the fragment shader, which only
+// fragments at or behind d1 reach. Rasterisation, conservative coverage and depths are the other
+// programs' (OcclusionShaders).
 inline constexpr int kPassSegmentTriangles = 32;
 namespace pass_uniform {
 inline constexpr GLint kSegmentBase = 8;  // int
@@ -63,7 +65,6 @@ inline constexpr GLint kBoxBase = 10;     // int
 inline constexpr GLuint kPassSegmentBinding = 6;  // uvec4 per segment
 // Texture units the pass' buffers are read from.
 inline constexpr GLuint kNearestObjectUnit = 0;  // R32UI: id1
-inline constexpr GLuint kNearestDepthUnit = 1;   // d1
 inline constexpr GLuint kOthersDepthUnit = 2;    // d2
 inline constexpr std::uint32_t kPassPerTriangleBit = 1;
 inline constexpr std::uint32_t kPassListedBit = 2;

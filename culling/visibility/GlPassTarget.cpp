@@ -50,8 +50,9 @@ void GlPassTarget::ensure(int resolution) {
   glNamedFramebufferTexture(others.get(), GL_DEPTH_ATTACHMENT, othersDepth.get(), 0);
   glNamedFramebufferDrawBuffer(others.get(), GL_NONE);
   glNamedFramebufferReadBuffer(others.get(), GL_NONE);
-  glNamedFramebufferParameteri(tests.get(), GL_FRAMEBUFFER_DEFAULT_WIDTH, resolution);
-  glNamedFramebufferParameteri(tests.get(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, resolution);
+  glNamedFramebufferTexture(tests.get(), GL_DEPTH_ATTACHMENT, nearestDepth.get(), 0);
+  glNamedFramebufferDrawBuffer(tests.get(), GL_NONE);
+  glNamedFramebufferReadBuffer(tests.get(), GL_NONE);
   checkComplete(nearest.get(), "nearest-depth", resolution);
   checkComplete(others.get(), "others-depth", resolution);
   checkComplete(tests.get(), "pass test", resolution);
@@ -86,7 +87,6 @@ void GlPassTarget::bindFor(PassStage stage) const {
     case PassStage::Test:
       glBindFramebuffer(GL_DRAW_FRAMEBUFFER, tests_.get());
       glBindTextureUnit(kNearestObjectUnit, nearestObject_.get());
-      glBindTextureUnit(kNearestDepthUnit, nearestDepth_.get());
       glBindTextureUnit(kOthersDepthUnit, othersDepth_.get());
       break;
   }

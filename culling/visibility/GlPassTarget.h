@@ -1,9 +1,9 @@
 #pragma once
 // The buffers of an order-independent pass (FlagShaders.h): per pixel the nearest written depth d1
 // and the object that wrote it id1 (one framebuffer, its colour attachment an R32UI texture), the
-// nearest depth d2 written by any other object (a second framebuffer), and a framebuffer without
-// attachments for the tests, which read all three as textures. Textures, not renderbuffers, so
-// that the later draws can fetch them.
+// nearest depth d2 written by any other object (a second framebuffer), and for the tests a third
+// framebuffer whose depth attachment is d1 (read by the depth test, not written), while they fetch
+// id1 and d2 as textures. Textures, not renderbuffers, so that the later draws can read them.
 #include <cstdint>
 
 #include "culling/visibility/FlagShaders.h"

@@ -233,12 +233,12 @@ void GlVisibilityPipeline::drawPass(PassStage stage, const PassBases& bases,
                                     std::span<const std::uint8_t> segmentTriangles) {
   useProgram(passProgram_[conservative_ ? 1 : 0][static_cast<int>(stage)]);
   passTarget_.bindFor(stage);
+  glEnable(GL_DEPTH_TEST);
   if (stage == PassStage::Test) {
-    // Each fragment compares itself with the pass' buffers; nothing is stored but flags.
-    glDisable(GL_DEPTH_TEST);
+    // A Fresh pass' test against d1 (applyRole): at or behind = occluded, nothing stored.
     glDepthMask(GL_FALSE);
+    glDepthFunc(GL_GEQUAL);
   } else {
-    glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
   }
