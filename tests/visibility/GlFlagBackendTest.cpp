@@ -4,8 +4,11 @@
 // buffer grows survive it; a batch is one draw.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "core/Errors.h"
 #include "culling/visibility/GlFlagBackend.h"
@@ -184,6 +187,210 @@ TEST_P(FlagBackend, BatchIsOneDrawAndOneAnswerPerPiece) {
   EXPECT_THROW(flags.queryTriangles(1, bad), RunError);
   EXPECT_THROW(flags.queryTriangles({1, 60, 5}), RunError);
   EXPECT_EQ(flags.queryRange({1, 0, 1}), 0u) << "a rejected batch takes no answers";
+}
+
+// Per object, what an order-independent pass writes of it and the tests it asks (every kind of
+// each), drawn from a seed.
+class PassWorkload {
+ public:
+  PassWorkload(const SceneGeometry& scene, std::uint64_t seed) : scene_(scene) {
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> pick(0, 5);
+    for (ObjectId o = 0; o < scene.objectCount(); ++o) writeKind_.push_back(pick(rng));
+  }
+
+  void write(VisibilityBackend& backend, ObjectId o) {
+    const auto n = static_cast<std::uint32_t>(scene_.meshOf(o).triangleCount());
+    std::mt19937_64 rng(o + 100);
+    switch (writeKind_[o]) {
+      case 0: backend.writeRange(wholeOf(scene_, o)); break;
+      case 1: backend.writeRange({o, n / 3, n / 2}); break;
+      case 2: backend.writeTriangles(o, subset(o, 0.7, rng)); break;
+      case 3: backend.writeBoxes(o, boxes(3, rng)); break;
+      case 4: backend.writeBox(o, boxes(1, rng)[0]); break;
+      default: break;  // nothing written
+    }
+  }
+  // The tests of `o`; returns how many answers they take.
+  std::size_t test(VisibilityBackend& backend, ObjectId o) {
+    const auto n = static_cast<std::uint32_t>(scene_.meshOf(o).triangleCount());
+    std::mt19937_64 rng(o + 200);
+    const auto list = subset(o, 0.5, rng);
+    const auto many = boxes(o + 1 == scene_.objectCount() ? 4500 : 7, rng);
+    backend.queryRange(wholeOf(scene_, o));
+    backend.queryTriangles({o, n / 4, n / 2});
+    backend.queryTriangles(o, list);
+    backend.queryBoxes(o, many);
+    backend.queryBox(o, boxes(1, rng)[0]);
+    return 1 + n / 2 + list.size() + many.size() + 1;
+  }
+
+ private:
+  // Some triangles of `o`, in no order.
+  std::vector<std::uint32_t> subset(ObjectId o, double keep, std::mt19937_64& rng) const {
+    std::bernoulli_distribution take(keep);
+    std::vector<std::uint32_t> out;
+    const auto n = static_cast<std::uint32_t>(scene_.meshOf(o).triangleCount());
+    for (std::uint32_t t = 0; t < n; ++t)
+      if (take(rng)) out.push_back(t);
+    std::shuffle(out.begin(), out.end(), rng);
+    return out;
+  }
+  static std::vector<OrientedBox> boxes(int count, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> at(-1.2, 1.2), size(0.05, 0.6), angle(-3, 3);
+    std::vector<OrientedBox> out(static_cast<std::size_t>(count));
+    for (OrientedBox& b : out) {
+      b.center = Eigen::Vector3d(at(rng), at(rng), at(rng));
+      b.halfExtents = Eigen::Vector3d(size(rng), size(rng), size(rng));
+      b.axes = Eigen::AngleAxisd(angle(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
+    }
+    return out;
+  }
+
+  const SceneGeometry& scene_;
+  std::vector<int> writeKind_;
+};
+
+// The order-independent pass with every kind of write and test (ranges, lists, boxes one by one
+// and batched, 4,500 boxes of one object) answers as CULLIDE's two Fresh passes on the same
+// backend answer together, in three draws; and the same calls split by fetches are answered as
+// without them (writes after a fetch are drawn again with the earlier ones on cleared buffers,
+// tests after one read the same buffers).
+TEST_P(FlagBackend, OrderIndependentPassAnswersAsTwoFreshPassesWithEveryKindOfPiece) {
+  std::mt19937_64 rng(7);
+  std::vector<Pose> poses;
+  const SceneGeometry scene = toriScene(12, rng, poses);
+  GlFlagBackend flags(test::sharedGlContext(), options());
+  flags.attachScene(scene);
+  flags.setPoses(poses);
+  const auto n = static_cast<ObjectId>(scene.objectCount());
+  const Aabb bounds(Eigen::Vector3d::Constant(-3), Eigen::Vector3d::Constant(3));
+  std::size_t occluded = 0, total = 0;
+  for (int resolution : {24, 256}) {
+    SCOPED_TRACE(testing::Message() << resolution << " px");
+    const ViewSpec view{Eigen::Vector3d(0.3, -0.2, 1).normalized(), bounds, resolution};
+    PassWorkload work(scene, 11);
+
+    // Two Fresh passes, in order and reversed: a piece's answer is its answers in both.
+    std::vector<std::size_t> first(n), second(n), count(n);
+    std::size_t issued = 0;
+    flags.beginPass(view, DepthUse::Fresh);
+    for (ObjectId o = 0; o < n; ++o) {
+      first[o] = issued;
+      issued += count[o] = work.test(flags, o);
+      work.write(flags, o);
+    }
+    flags.beginPass(view, DepthUse::Fresh);
+    for (ObjectId o = n; o-- > 0;) {
+      second[o] = issued;
+      issued += work.test(flags, o);
+      work.write(flags, o);
+    }
+    std::vector<std::uint8_t> both;
+    flags.fetchResults(both);
+    ASSERT_EQ(both.size(), issued);
+    std::vector<std::uint8_t> expected;
+    for (ObjectId o = 0; o < n; ++o)
+      for (std::size_t k = 0; k < count[o]; ++k)
+        expected.push_back(both[first[o] + k] && both[second[o] + k]);
+
+    // One order-independent pass.
+    flags.resetCounters();
+    flags.beginPass(view, DepthUse::OrderIndependent);
+    for (ObjectId o = 0; o < n; ++o) work.write(flags, o);
+    for (ObjectId o = 0; o < n; ++o) work.test(flags, o);
+    std::vector<std::uint8_t> got;
+    flags.fetchResults(got);
+    ASSERT_EQ(got, expected);
+    const VisibilityCounters c = flags.counters();
+    EXPECT_EQ(c.draws, 3u);
+    EXPECT_EQ(c.queries, expected.size());
+    EXPECT_EQ(c.passes, 1u);
+
+    // Split by fetches, with writes before the first fetch (each object's first half of
+    // triangles) that the writes after it must be drawn with: answered as the same calls without
+    // the fetches.
+    const auto firstHalves = [&] {
+      for (ObjectId o = 0; o < n; ++o)
+        flags.writeRange({o, 0, static_cast<std::uint32_t>(scene.meshOf(o).triangleCount() / 2)});
+    };
+    flags.beginPass(view, DepthUse::OrderIndependent);
+    firstHalves();
+    for (ObjectId o = 0; o < n; ++o) work.write(flags, o);
+    for (ObjectId o = 0; o < n; ++o) work.test(flags, o);
+    std::vector<std::uint8_t> joined;
+    flags.fetchResults(joined);
+    flags.beginPass(view, DepthUse::OrderIndependent);
+    firstHalves();
+    std::vector<std::uint8_t> none;
+    flags.fetchResults(none);
+    EXPECT_TRUE(none.empty());
+    for (ObjectId o = 0; o < n; ++o) work.write(flags, o);
+    for (ObjectId o = 0; o < n / 2; ++o) work.test(flags, o);
+    std::vector<std::uint8_t> split;
+    flags.fetchResults(split);
+    for (ObjectId o = n / 2; o < n; ++o) work.test(flags, o);
+    std::vector<std::uint8_t> rest;
+    flags.fetchResults(rest);
+    split.insert(split.end(), rest.begin(), rest.end());
+    ASSERT_EQ(split, joined);
+
+    for (std::uint8_t a : expected) occluded += a == 0;
+    total += expected.size();
+    std::printf("%d px: %zu of %zu answers not fully visible\n", resolution,
+                static_cast<std::size_t>(std::count(expected.begin(), expected.end(), 0)),
+                expected.size());
+  }
+  // Both answers occur often, so the comparison means something.
+  EXPECT_GT(occluded, total / 20);
+  EXPECT_LT(occluded, total - total / 20);
+}
+
+// Tests gathered in an order-independent pass are answered against its buffers when the next pass
+// begins before the fetch; a write after a test is refused and changes nothing.
+TEST_P(FlagBackend, OrderIndependentTestsAreDrawnBeforeTheNextPass) {
+  // A square in front of another, both facing the view.
+  const SceneGeometry scene =
+      test::sceneOf({test::squareMesh(0, 0, -0.5f, 0.5f), test::squareMesh(0, 0, 0.5f, 0.5f)});
+  GlFlagBackend flags(test::sharedGlContext(), options());
+  flags.attachScene(scene);
+  flags.setPoses(test::identityPoses(2));
+  const ViewSpec view{Eigen::Vector3d::UnitZ(),
+                      Aabb(Eigen::Vector3d::Constant(-1), Eigen::Vector3d::Constant(1)), 32};
+  flags.beginPass(view, DepthUse::OrderIndependent);
+  flags.writeRange(wholeOf(scene, 0));
+  flags.writeRange(wholeOf(scene, 1));
+  EXPECT_EQ(flags.queryRange(wholeOf(scene, 0)), 0u);
+  EXPECT_EQ(flags.queryRange(wholeOf(scene, 1)), 1u);
+  EXPECT_THROW(flags.writeRange(wholeOf(scene, 0)), RunError);
+  // A Fresh pass with nothing written: its test is fully visible.
+  flags.beginPass(view, DepthUse::Fresh);
+  EXPECT_EQ(flags.queryRange(wholeOf(scene, 1)), 2u);
+  std::vector<std::uint8_t> answers;
+  flags.fetchResults(answers);
+  EXPECT_EQ(answers, (std::vector<std::uint8_t>{1, 0, 1}));
+  EXPECT_EQ(flags.counters().draws, 4u);  // the pass' three and the Fresh test
+}
+
+// gl-queries offers no order-independent pass and says which backends do.
+TEST(QueryBackendOrderIndependent, RefusedNamingTheBackendsThatOfferIt) {
+  const SceneGeometry scene = test::sceneOf({test::squareMesh(0, 0, 0, 0.5f)});
+  GlOcclusionQueryBackend queries(test::sharedGlContext(), {});
+  queries.attachScene(scene);
+  queries.setPoses(test::identityPoses(1));
+  try {
+    queries.beginPass({Eigen::Vector3d::UnitZ(),
+                       Aabb(Eigen::Vector3d::Constant(-1), Eigen::Vector3d::Constant(1)), 32},
+                      DepthUse::OrderIndependent);
+    FAIL() << "gl-queries began an order-independent pass";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("gl-queries"), std::string::npos) << what;
+    EXPECT_NE(what.find("gl-flags"), std::string::npos) << what;
+    EXPECT_NE(what.find("cpu"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  EXPECT_FALSE(queries.supportsOrderIndependent());
 }
 
 TEST_P(FlagBackend, ReportsItsName) {
