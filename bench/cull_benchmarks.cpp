@@ -11,6 +11,13 @@
 // plainly (plain: every write rasterised, every test tested, one tile), at 1 and 2 threads: what
 // the tile size and the threads change, with the tile counters.
 //
+// gl_profile/env3/<strategy>/<backend>/res:800/manual_time: the same cull on a GL backend with
+// every draw timed on the GPU (VisibilityOptions::timeGpu; the queries add a little to the time),
+// for cullide, cullide_oi and ours: where a frame's time goes. Counters per frame: draws, fetches
+// (read-backs), fetch_wait_ms (the CPU waiting for answers: the GPU finishing what was issued, then
+// the copy), gpu_draw_ms (the GPU's time in the draws) and cpu_ms (the rest: the strategy and the
+// issuing of draws, cull time minus the waits).
+//
 // Set-up per run of the benchmark function, untimed: the backend, its warm-up at the resolution
 // (shader variants, framebuffer), the detector's attach (hierarchies) and one detection of the
 // frame: strategies keep state from frame to frame (ours keeps its sorted lists) and the first cull
@@ -36,9 +43,15 @@ struct CpuSetting {
   int threads = 1;
 };
 
+// A GL backend with its draws timed on the GPU (gl_profile/...).
+struct GlProfiling {
+  bool timeGpu = false;
+};
+
 void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
                        const std::string& environment, const std::string& strategyName,
-                       const std::string& backendName, int resolution, const CpuSetting& cpu = {}) {
+                       const std::string& backendName, int resolution, const CpuSetting& cpu = {},
+                       const GlProfiling& profiling = {}) {
   const RecordedScene& recorded = frames.recorded(environment);
   const auto poses = frames.poses(environment);
   const int frame = frames.measured(environment).frame;
@@ -51,6 +64,11 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
     rasteriser.setOptions(options);
     rasteriser.setEvaluation(cpu.evaluation);
   }
+  if (profiling.timeGpu) {
+    VisibilityOptions options = visibilityOptionsOf(recorded.config.culling);
+    options.timeGpu = true;
+    backend->setOptions(options);
+  }
   ExactPhase exact(recorded.scene);
   auto detector = DetectorRegistry::builtin().createDetector(
       strategyName, DetectorOptions{resolution, recorded.config.culling}, *backend, exact);
@@ -58,11 +76,12 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
   (void)detector->detect({poses, frame});
 
   CullingCounters total;
-  double exactMs = 0;
+  double exactMs = 0, cullMs = 0;
   std::uint64_t collidingPairs = 0;
   for (auto _ : state) {
     const DetectedFrame detected = detector->detect({poses, frame});
     state.SetIterationTime(detected.cullMs / 1e3);
+    cullMs += detected.cullMs;
     const CullingCounters c = detected.cullingCounters();
     total.visibility += c.visibility;
     total.sets += c.sets;
@@ -86,6 +105,13 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
   state.counters["pcs_triangles"] = perIteration(double(total.pcsTriangles));
   state.counters["exact_ms"] = perIteration(exactMs);
   state.counters["colliding_pairs"] = perIteration(double(collidingPairs));
+  if (profiling.timeGpu) {
+    const double waitMs = double(total.visibility.fetchWaitNs) / 1e6;
+    state.counters["fetches"] = perIteration(double(total.visibility.fetches));
+    state.counters["fetch_wait_ms"] = perIteration(waitMs);
+    state.counters["gpu_draw_ms"] = perIteration(double(total.visibility.gpuDrawNs) / 1e6);
+    state.counters["cpu_ms"] = perIteration(cullMs - waitMs);
+  }
 }
 
 }  // namespace
@@ -131,6 +157,19 @@ void registerCullBenchmarks(RecordedFrames& frames) {
                              })
             ->UseManualTime();
       }
+  // Where a GL backend's time goes (env3, 800 px).
+  for (const std::string& backend : frames.backends()) {
+    if (backend == VisibilityBackendRegistry::kDefault) continue;
+    for (const std::string strategy : {"cullide", "cullide_oi", "ours"}) {
+      if (!DetectorRegistry::builtin().runsOn(strategy, backend)) continue;
+      registerMilliseconds(cellName("gl_profile", "env3", strategy, backend, 800),
+                           [&frames, strategy, backend](benchmark::State& state) {
+                             cullMeasuredFrame(state, frames, "env3", strategy, backend, 800, {},
+                                               GlProfiling{true});
+                           })
+          ->UseManualTime();
+    }
+  }
 }
 
 }  // namespace cdb::bench

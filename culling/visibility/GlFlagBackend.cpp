@@ -1,6 +1,7 @@
 #include "culling/visibility/GlFlagBackend.h"
 
 #include <algorithm>
+#include <chrono>
 #include <string>
 
 #include "core/Errors.h"
@@ -39,6 +40,7 @@ void GlFlagBackend::setOptions(const VisibilityOptions& options) {
   if (orderIndependent_) drawPassTests();
   pipeline_.setConservative(options.conservative);
   pipeline_.setRawDepthOffset(options.rawDepthOffset);
+  pipeline_.timeDraws(options.timeGpu);
 }
 
 void GlFlagBackend::attachScene(const SceneGeometry& scene) { pipeline_.attach(scene); }
@@ -377,7 +379,12 @@ void GlFlagBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
   // Writes are drawn by a fetch too, so that tests after it in the pass read them.
   if (orderIndependent_) drawPassTests();
   if (flags_.used() > 0) ++counters_.fetches;
+  const auto start = std::chrono::steady_clock::now();
   flags_.fetch(fullyVisible);
+  counters_.fetchWaitNs += static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
+          .count());
+  counters_.gpuDrawNs += pipeline_.collectDrawNs();
   listedTriangles_.rewind();
   boxMatrices_.rewind();
   passSegments_.rewind();

@@ -1,5 +1,6 @@
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 
+#include <chrono>
 #include <string>
 
 #include "core/Errors.h"
@@ -19,6 +20,7 @@ std::string GlOcclusionQueryBackend::renderer() const { return context_->info().
 void GlOcclusionQueryBackend::setOptions(const VisibilityOptions& options) {
   pipeline_.setConservative(options.conservative);
   pipeline_.setRawDepthOffset(options.rawDepthOffset);
+  pipeline_.timeDraws(options.timeGpu);
 }
 
 void GlOcclusionQueryBackend::attachScene(const SceneGeometry& scene) { pipeline_.attach(scene); }
@@ -119,7 +121,12 @@ void GlOcclusionQueryBackend::writeTriangles(ObjectId object,
 
 void GlOcclusionQueryBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
   if (pipeline_.pendingQueries() > 0) ++counters_.fetches;
+  const auto start = std::chrono::steady_clock::now();
   pipeline_.fetch(fullyVisible);
+  counters_.fetchWaitNs += static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
+          .count());
+  counters_.gpuDrawNs += pipeline_.collectDrawNs();
 }
 
 }  // namespace cdb

@@ -256,6 +256,7 @@ void GlVisibilityPipeline::drawPass(PassStage stage, const PassBases& bases,
     runFirsts_.push_back(static_cast<GLint>(kSegmentVertices * s));
     runCounts_.push_back(static_cast<GLsizei>(kConservativeVerticesPerTriangle * segmentTriangles[s]));
   }
+  const auto timed = drawTimer_.scope();
   glMultiDrawArrays(GL_TRIANGLES, runFirsts_.data(), runCounts_.data(),
                     static_cast<GLsizei>(runFirsts_.size()));
   // The next role-based draw sets its state again.
@@ -270,11 +271,13 @@ void GlVisibilityPipeline::drawSegments(std::uint32_t first, std::uint32_t count
     runCounts_.push_back(static_cast<GLsizei>(kConservativeVerticesPerTriangle *
                                               std::min(kSegmentTriangles, count - done)));
   }
+  const auto timed = drawTimer_.scope();
   glMultiDrawArrays(GL_TRIANGLES, runFirsts_.data(), runCounts_.data(),
                     static_cast<GLsizei>(runFirsts_.size()));
 }
 
 void GlVisibilityPipeline::drawRuns(const GlMeshSlot& slot, std::span<const Run> runs) {
+  const auto timed = drawTimer_.scope();
   runCounts_.clear();
   if (pulled()) {
     runFirsts_.clear();

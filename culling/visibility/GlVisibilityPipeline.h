@@ -14,6 +14,7 @@
 #include "culling/visibility/DepthPassSetup.h"
 #include "culling/visibility/FlagShaders.h"
 #include "culling/visibility/GlPassTarget.h"
+#include "culling/visibility/GlDrawTimer.h"
 #include "culling/visibility/GlQueryPool.h"
 #include "culling/visibility/GlSceneBuffers.h"
 #include "culling/visibility/OcclusionShaders.h"
@@ -101,9 +102,12 @@ class GlVisibilityPipeline {
   // Triangles [first, first + count) of a mesh.
   void draw(const GlMeshSlot& slot, std::uint32_t first, std::uint32_t count) {
     const std::uint32_t global = slot.firstTriangle + first;
-    if (programs_ == PipelinePrograms::Flags)
+    if (programs_ == PipelinePrograms::Flags) {
       drawNumbered(global, count);
-    else if (pulled())
+      return;
+    }
+    const auto timed = drawTimer_.scope();
+    if (pulled())
       glDrawArrays(GL_TRIANGLES, static_cast<GLint>(kConservativeVerticesPerTriangle * global),
                    static_cast<GLsizei>(kConservativeVerticesPerTriangle * count));
     else
@@ -124,6 +128,7 @@ class GlVisibilityPipeline {
   // glMultiDrawArrays gl_VertexID counts from that draw's `first`, as in one glDrawArrays.
   void drawNumbered(std::uint32_t first, std::uint32_t count) {
     if (count <= kSegmentTriangles) {
+      const auto timed = drawTimer_.scope();
       glDrawArrays(GL_TRIANGLES, static_cast<GLint>(kConservativeVerticesPerTriangle * first),
                    static_cast<GLsizei>(kConservativeVerticesPerTriangle * count));
       return;
@@ -131,6 +136,7 @@ class GlVisibilityPipeline {
     drawSegments(first, count);
   }
   void drawInstances(const GlMeshSlot& slot, std::uint32_t instances) {
+    const auto timed = drawTimer_.scope();
     glDrawArraysInstanced(GL_TRIANGLES,
                           static_cast<GLint>(kConservativeVerticesPerTriangle * slot.firstTriangle),
                           static_cast<GLsizei>(kConservativeVerticesPerTriangle * slot.triangleCount),
@@ -153,6 +159,11 @@ class GlVisibilityPipeline {
   void endQuery() { queries_.end(); }
   [[nodiscard]] std::size_t pendingQueries() const { return queries_.pending(); }
   void fetch(std::vector<std::uint8_t>& fullyVisible) { queries_.fetch(fullyVisible); }
+
+  // Profiling (VisibilityOptions::timeGpu): the GPU time of the draws since the last collect;
+  // call after a read-back.
+  void timeDraws(bool on) { drawTimer_.enable(on); }
+  std::uint64_t collectDrawNs() { return drawTimer_.enabled() ? drawTimer_.collectNs() : 0; }
 
  private:
   void applyPassState();
@@ -185,6 +196,7 @@ class GlVisibilityPipeline {
   int maxResolution_ = 0;
   GlSceneBuffers buffers_;
   GlQueryPool queries_;
+  GlDrawTimer drawTimer_;
   GlPassTarget passTarget_;
   bool orderIndependent_ = false;  // the current pass
 

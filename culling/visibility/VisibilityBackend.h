@@ -73,6 +73,9 @@ struct VisibilityOptions {
   // Worker threads of backends that use the CPU's cores (0 = all of them); answers never depend
   // on it.
   int threads = 0;
+  // GL backends, for profiling: time every draw on the GPU (a GL_TIME_ELAPSED query each) and
+  // count it in VisibilityCounters::gpuDrawNs. Off by default: the queries cost a little per draw.
+  bool timeGpu = false;
 };
 
 struct VisibilityCounters {
@@ -95,6 +98,11 @@ struct VisibilityCounters {
   std::uint64_t tileTestsSkipped = 0;
   std::uint64_t tileWrites = 0;
   std::uint64_t tileWritesRasterised = 0;
+  // GL backends: wall-clock time the CPU waited for answers to be read back (the GPU finishing
+  // what was issued, then the copy), and, with VisibilityOptions::timeGpu, the GPU time of the
+  // draws. The rest of a cull's time is the CPU's: the strategy and the issuing of draws.
+  std::uint64_t fetchWaitNs = 0;
+  std::uint64_t gpuDrawNs = 0;
 
   VisibilityCounters& operator+=(const VisibilityCounters& o) {
     queries += o.queries; draws += o.draws; trianglesDrawn += o.trianglesDrawn;
@@ -103,6 +111,7 @@ struct VisibilityCounters {
     tileTests += o.tileTests; tileTestsByBounds += o.tileTestsByBounds;
     tileTestsSkipped += o.tileTestsSkipped; tileWrites += o.tileWrites;
     tileWritesRasterised += o.tileWritesRasterised;
+    fetchWaitNs += o.fetchWaitNs; gpuDrawNs += o.gpuDrawNs;
     return *this;
   }
   friend VisibilityCounters operator-(VisibilityCounters a, const VisibilityCounters& b) {
@@ -112,6 +121,7 @@ struct VisibilityCounters {
     a.tileTests -= b.tileTests; a.tileTestsByBounds -= b.tileTestsByBounds;
     a.tileTestsSkipped -= b.tileTestsSkipped; a.tileWrites -= b.tileWrites;
     a.tileWritesRasterised -= b.tileWritesRasterised;
+    a.fetchWaitNs -= b.fetchWaitNs; a.gpuDrawNs -= b.gpuDrawNs;
     return a;
   }
 };

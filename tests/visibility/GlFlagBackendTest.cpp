@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/Errors.h"
@@ -391,6 +392,42 @@ TEST(QueryBackendOrderIndependent, RefusedNamingTheBackendsThatOfferIt) {
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
   EXPECT_FALSE(queries.supportsOrderIndependent());
+}
+
+// Profiling (VisibilityOptions::timeGpu) changes no answer; with it the draws' GPU time is
+// counted, without it none; the time waited for answers is counted either way. Both GL backends.
+TEST_P(FlagBackend, DrawsTimedOnTheGpuOnlyWhenAskedAndAnswersUnchanged) {
+  std::mt19937_64 rng(7);
+  std::vector<Pose> poses;
+  const SceneGeometry scene = toriScene(12, rng, poses);
+  VisibilityOptions timed = options();
+  timed.timeGpu = true;
+  GlFlagBackend plainFlags(test::sharedGlContext(), options());
+  GlFlagBackend timedFlags(test::sharedGlContext(), timed);
+  GlOcclusionQueryBackend plainQueries(test::sharedGlContext(), options());
+  GlOcclusionQueryBackend timedQueries(test::sharedGlContext(), timed);
+  for (auto [plain, profiled] :
+       {std::pair<VisibilityBackend*, VisibilityBackend*>{&plainFlags, &timedFlags},
+        std::pair<VisibilityBackend*, VisibilityBackend*>{&plainQueries, &timedQueries}}) {
+    SCOPED_TRACE(std::string(plain->name()));
+    for (VisibilityBackend* b : {plain, profiled}) {
+      b->attachScene(scene);
+      b->setPoses(poses);
+      b->resetCounters();
+    }
+    EXPECT_EQ(Workload(scene, 11, 64).run(*profiled), Workload(scene, 11, 64).run(*plain));
+    const VisibilityCounters p = plain->counters(), t = profiled->counters();
+    EXPECT_EQ(p.draws, t.draws);
+    EXPECT_EQ(p.gpuDrawNs, 0u);
+    EXPECT_GT(t.gpuDrawNs, 0u);
+    EXPECT_GT(p.fetchWaitNs, 0u);
+    EXPECT_GT(t.fetchWaitNs, 0u);
+    // Switched off again: no more draw time counted.
+    profiled->setOptions(options());
+    profiled->resetCounters();
+    (void)Workload(scene, 11, 64).run(*profiled);
+    EXPECT_EQ(profiled->counters().gpuDrawNs, 0u);
+  }
 }
 
 TEST_P(FlagBackend, ReportsItsName) {
