@@ -18,7 +18,8 @@ struct RunOptions {
   std::optional<int> repeats;
   std::vector<std::string> strategyRepeats;  // --strategy-repeats: "name=N", N <= repeats
   std::optional<std::uint64_t> seed;
-  std::optional<bool> conservative;  // --raw sets false
+  std::optional<bool> conservative;      // --raw sets false
+  std::optional<double> rawDepthOffset;  // --raw-offset: raw mode's depth offset (NDC units)
   std::optional<std::string> visibility;  // --visibility: backend name (cdbench backends)
   std::optional<int> threads;             // --threads: CPU backends' worker threads, 0 = all
   std::filesystem::path outDir = "results/latest";

@@ -25,6 +25,7 @@
 #include "harness/RunOutputs.h"
 #include "harness/RunPlan.h"
 #include "scenes/AssetPath.h"
+#include "scenes/ConfigLimits.h"
 #include "scenes/ConfigLoader.h"
 
 namespace cdb {
@@ -36,11 +37,38 @@ double msSince(Clock::time_point t0, Clock::time_point t1) {
   return std::chrono::duration<double, std::milli>(t1 - t0).count();
 }
 
+std::string formatNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 std::string readWholeFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// Raw rasterisation is a property of what is drawn: a detector that draws nothing (a CPU peer,
+// the all_pairs reference) would run exactly as in conservative mode, and its rows would be
+// labelled with a mode that did not apply to them.
+void refuseRawWhereNothingIsDrawn(const ScenarioConfig& config, const RunOptions& options) {
+  const DetectorRegistry& registry = DetectorRegistry::builtin();
+  for (const std::string& name : config.sweep.strategies) {
+    if (registry.usesBackend(name)) continue;
+    const std::string what = registry.kind(name) == DetectorRegistry::Kind::CpuPeer
+                                 ? "a CPU peer"
+                                 : "a reference that culls nothing";
+    const std::string where = options.conservative ? std::string("--raw")
+                                                   : options.configPath.string() +
+                                                         ": culling.visibility.conservative: false";
+    const std::string fix = options.strategies
+                                ? "leave it out of --strategies"
+                                : "name the image-based strategies with --strategies";
+    throw InputError(where + ": " + name + " is " + what +
+                     " and draws nothing, so raw rasterisation does not apply to it; " + fix);
+  }
 }
 
 }  // namespace
@@ -60,6 +88,14 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
   if (options.seed) config.seed = *options.seed;
   VisibilitySpec& visibility = config.culling.visibility;
   if (options.conservative) visibility.conservative = *options.conservative;
+  if (options.rawDepthOffset) {
+    const double offset = *options.rawDepthOffset;
+    if (visibility.conservative)
+      throw InputError("--raw-offset: applies to raw mode only; give --raw as well");
+    if (!(offset >= limits::kDepthOffset.min && offset <= limits::kDepthOffset.max))
+      throw InputError("--raw-offset " + formatNumber(offset) + ": expected 0..1 (NDC depth units)");
+    visibility.rawDepthOffset = offset;
+  }
   if (options.visibility) visibility.backend = *options.visibility;
   if (options.threads) visibility.threads = *options.threads;
   visibility.backend = backendNameOf(config.culling);
@@ -94,6 +130,7 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
   config.sweep.strategies = std::move(runnable);
   if (config.sweep.strategies.empty())
     throw InputError("no strategy of the run runs on the " + visibility.backend + " backend");
+  if (!visibility.conservative) refuseRawWhereNothingIsDrawn(config, options);
   for (int r : config.sweep.resolutions)
     if (r < 1 || r > 16384)
       throw InputError("resolution " + std::to_string(r) + ": expected 1..16384 pixels");

@@ -92,6 +92,7 @@ int main(int argc, char** argv) {
   std::string record, replay;
   bool raw = false, noTruth = false;
   int frames = 0, repeats = 0;
+  double rawOffset = 0;
   std::uint64_t seed = 0;
   auto* runCmd = app.add_subcommand("run", "run a scenario config and write frames.csv and meta.json");
   runCmd->add_option("config", run.configPath, "scenario YAML (configs/env1.yaml ...)")->required();
@@ -119,6 +120,10 @@ int main(int argc, char** argv) {
   auto* threadsOpt = runCmd->add_option("--threads", threads,
                                         "worker threads of a CPU visibility backend (0 = every core)");
   runCmd->add_flag("--raw", raw, "raw rasterisation (no conservative widening): may miss contacts");
+  auto* rawOffsetOpt = runCmd->add_option(
+      "--raw-offset", rawOffset,
+      "with --raw: the depth offset toward 'occluded' in NDC depth units (default: the config's "
+      "culling.visibility.raw_depth_offset, the thesis' 1e-5)");
   runCmd->add_flag("--no-truth", noTruth, "skip the ground truth");
   runCmd->add_flag("--quiet", run.quiet,
                    "no progress on stderr and no average/maximum table on stdout at the end");
@@ -256,6 +261,7 @@ int main(int argc, char** argv) {
     run.strategyRepeats = splitNames(strategyRepeats);
     if (*seedOpt) run.seed = seed;
     if (raw) run.conservative = false;
+    if (*rawOffsetOpt) run.rawDepthOffset = rawOffset;
     if (!visibility.empty()) run.visibility = visibility;
     if (*threadsOpt) run.threads = threads;
     run.groundTruth = !noTruth;

@@ -76,6 +76,20 @@ TEST_F(BadConfig, UnknownStrategyInTheConfig) {
   expectCleanFailure(r, 2, out(), {"strategy.yaml", "nosuch", "cullide"});
 }
 
+// The config asks for raw mode and lists a CPU peer: the message names the config and the key,
+// and says how to run the image-based strategies alone.
+TEST_F(BadConfig, RawModeInTheConfigWithACpuPeer) {
+  std::string text = env3With("^  strategies: .*$", "  strategies: [cullide, bullet]");
+  const std::regex mode("conservative: true");
+  ASSERT_TRUE(std::regex_search(text, mode));
+  text = std::regex_replace(text, mode, "conservative: false");
+  const auto config = dir.write("raw.yaml", text);
+  const auto r = runCdbench({"run", config.string(), "--frames", "2", "--quiet", "--out", out().string()});
+  expectCleanFailure(r, 2, out(),
+                     {"raw.yaml", "culling.visibility.conservative: false", "bullet",
+                      "name the image-based strategies with --strategies"});
+}
+
 // Within the config's limit but above what this GL can render at: refused before any frame.
 TEST_F(BadConfig, ResolutionAboveTheGlMaximum) {
   int glMax = 0;
@@ -132,6 +146,14 @@ const BadArguments kBadArguments[] = {
     {"FramesZero", {"--frames", "0"}, {"--frames", "expected"}},
     {"UnknownOption", {"--resolution", "800"}, {"--resolution"}},
     {"GlPlatformUnknown", {"--objects", "3", "--gl", "vulkan"}, {"vulkan", "auto, device or surfaceless"}},
+    // Raw rasterisation applies to what draws: not to a CPU peer or the all_pairs reference.
+    {"RawWithACpuPeer", {"--raw", "--strategies", "cullide,fcl"},
+     {"--raw", "fcl is a CPU peer", "draws nothing", "leave it out of --strategies"}},
+    {"RawWithTheReference", {"--raw", "--strategies", "all_pairs"}, {"--raw", "all_pairs", "draws nothing"}},
+    {"RawOffsetWithoutRaw", {"--raw-offset", "0.001"}, {"--raw-offset", "give --raw"}},
+    {"RawOffsetNegative", {"--raw", "--raw-offset=-0.5"}, {"--raw-offset -0.5", "expected 0..1"}},
+    {"RawOffsetAboveOne", {"--raw", "--raw-offset", "2"}, {"--raw-offset 2", "expected 0..1"}},
+    {"RawOffsetNotANumber", {"--raw", "--raw-offset", "tiny"}, {"--raw-offset", "tiny"}},
 };
 
 class BadCommandLine : public ::testing::TestWithParam<BadArguments> {};
