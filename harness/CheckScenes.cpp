@@ -18,6 +18,9 @@ const RecordedScene& CheckScenes::get(const CheckScene& spec) {
   r->config.sweep.countedGroup = spec.group;
   r->config = withObjectCount(r->config, spec.objects);
   r->config.seed = spec.seed;
+  // The check guards the default, conservative mode (no real contact lost at any resolution),
+  // whatever the config says: raw mode loses contacts by design (README "Visibility backends").
+  r->config.culling.visibility.conservative = true;
   r->config.dynamics.frames = spec.frames;
   r->scene = buildScene(r->config, assetDirs_);
   r->recording = recordSimulation(r->config, r->scene, spec.seed);

@@ -17,6 +17,7 @@ class CheckScenes {
   CheckScenes(std::filesystem::path configDir, std::vector<std::string> assetDirs);
 
   // Loads and simulates `spec` on first use; the reference stays valid for the object's life.
+  // The scene's visibility mode is always conservative, whatever its config says.
   // Throws InputError for a bad config, a missing mesh or a group the config does not have.
   const RecordedScene& get(const CheckScene& spec);
 

@@ -8,15 +8,21 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <functional>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 #include "core/Errors.h"
+#include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
+#include "culling/visibility/BackendResources.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/CheckBaseline.h"
+#include "harness/CheckScenes.h"
 #include "harness/RegressionCheck.h"
+#include "harness/TruthComparison.h"
 #include "tests/scenes/ScratchDir.h"
 #include "tests/scenes/TestAssets.h"
 
@@ -204,6 +210,55 @@ TEST(RegressionCheck, StrategyDroppingACollidingObjectFailsTheCorrectness) {
       EXPECT_TRUE(row.passed());
     }
   }
+}
+
+// The check guards the default, conservative mode, whatever the config says. With env3's config
+// switched to raw mode, raw rasterisation loses the contact at 32 px (shown first, so the pass
+// below means something), and the check on that config still passes: it runs conservatively.
+TEST(RegressionCheck, GuardsConservativeModeWhateverTheConfigSays) {
+  ASSERT_GE(tori().contactFrame, 0);
+  const auto frameIndex = static_cast<std::uint32_t>(tori().contactFrame);
+  const test::ScratchDir dir;
+  std::ifstream in(defaultConfigDir() / "env3.yaml", std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string config = text.str();
+  const std::string conservative = "conservative: true";
+  const auto at = config.find(conservative);
+  ASSERT_NE(at, std::string::npos) << "env3.yaml no longer sets the mode";
+  config.replace(at, conservative.size(), "conservative: false");
+  CheckOptions options = optionsFor(dir);
+  options.configDir = dir.write("configs/env3.yaml", config).parent_path();
+
+  CheckScenes scenes(options.configDir, options.assetDirs);
+  const RecordedScene& recorded = scenes.get(tori().scene);
+  EXPECT_TRUE(recorded.config.culling.visibility.conservative);
+  CullingSpec raw = recorded.config.culling;
+  raw.visibility.conservative = false;
+  BackendResources resources(GlPlatform::Auto);
+  const auto backend =
+      VisibilityBackendRegistry::builtin().create(kBackend, resources, visibilityOptionsOf(raw));
+  backend->attachScene(recorded.scene);
+  ExactPhase exact(recorded.scene);
+  const auto detector =
+      DetectorRegistry::builtin().createDetector("cullide", DetectorOptions{32, raw}, *backend, exact);
+  detector->attach(recorded.scene);
+  const std::span<const Pose> poses = recorded.recording.frame(frameIndex);
+  const auto truth = GroundTruth(recorded.scene).compute(poses).collidingPairs;
+  ASSERT_FALSE(truth.empty());
+  const DetectedFrame detected = detector->detect({poses, tori().contactFrame});
+  EXPECT_GE(compareWithTruth(truth, detected, recorded.scene.objectCount()).falseNegatives, 1u)
+      << "raw cullide at 32 px was expected to lose the contact";
+
+  CheckPlan plan;
+  plan.strategies = {"cullide"};
+  plan.correctness = {{tori().scene, {tori().contactFrame}, {32}}};
+  options.updateBaseline = true;  // no timing cases: records an empty baseline when correct
+  const CheckReport report = runRegressionCheck(options, plan);
+  printCheckReport(report, stdout);
+  ASSERT_EQ(report.correctness.size(), 1u);
+  EXPECT_EQ(report.correctness[0].comparison.falseNegatives, 0u);
+  EXPECT_TRUE(report.passed());
 }
 
 TEST(RegressionCheck, FrameWithoutContactsCannotPass) {
