@@ -12,6 +12,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from . import precision
 from .backends import choose_primary, cost_model, discover_backends
 from .comparison import build_comparison, write_comparison
 from .correctness import correctness_rows
@@ -65,6 +66,7 @@ def run(result_dir: Path, thesis_path: Path, primary: str = None):
         for name in names:
             _share_reference_rows([runs[b][name] for b in [primary] + [f for f in folders if f != primary]
                                    if b is not None])
+    study = precision.read_study(result_dir)
     main = primary or ""
     sections, cost_models, others = [], [], []
     for name in names:
@@ -87,8 +89,11 @@ def run(result_dir: Path, thesis_path: Path, primary: str = None):
     layout = {"backends": backends, "primary": primary, "runs": runs, "names": names} if backends else None
     report = result_dir / "REPORT.md"
     tmp = result_dir / "REPORT.md.tmp"
-    tmp.write_text(report_markdown(result_dir, _shown(thesis_path), sections, others, cost_models, layout),
-                   encoding="utf-8")
+    text = report_markdown(result_dir, _shown(thesis_path), sections, others, cost_models, layout)
+    if study:
+        text += "\n" + "\n".join(precision.write_study(study, result_dir)).rstrip() + "\n"
+        print(precision.summary_line(study))
+    tmp.write_text(text, encoding="utf-8")
     tmp.replace(report)
     return report, sections + others
 
