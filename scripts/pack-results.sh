@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Copies a finished reproduction run into the form results/ commits: per environment folder
-# (RUN/envN or RUN/<backend>/envN) frames.csv compressed to frames.csv.gz, meta.json, the run's
-# own table (summary.md, summary.csv), the shares' shard-*.json and the snapshots (snapshot*.png
-# with their .json, the report's pictures of the scenes). Left behind: recordings/ (the recorded
-# poses, which a rerun records again
-# from the same seeds), cells/ and run.json (what a stopped run resumes from). scripts/report.py
-# reads frames.csv.gz as it reads frames.csv, so the report can be written into DEST afterwards:
+# (RUN/envN or RUN/<backend>/envN, and the precision study's RUN/precision/<backend>/envN/<mode>)
+# frames.csv compressed to frames.csv.gz, meta.json, the run's own table (summary.md, summary.csv),
+# the shares' shard-*.json and the snapshots (snapshot*.png with their .json, the report's pictures
+# of the scenes). Left behind: recordings/ (the recorded poses, which a rerun records again from the
+# same seeds), cells/ and run.json (what a stopped run resumes from). scripts/report.py reads
+# frames.csv.gz as it reads frames.csv, so the report can be written into DEST afterwards:
 #
 #   scripts/pack-results.sh RUN DEST && scripts/report.py DEST --primary cpu
 #
@@ -25,7 +25,11 @@ dest=$2
 [[ ! -e $dest ]] || die "$dest already exists; pack into a new folder"
 command -v gzip >/dev/null || die "gzip is needed"
 
-mapfile -t envs < <(cd "$run" && find -L . -mindepth 1 -maxdepth 2 -type d -name 'env*' | sed 's|^\./||' | sort)
+# Run folders: RUN/envN, RUN/<backend>/envN, and the precision study's RUN/precision/<backend>/envN/<mode>.
+mapfile -t envs < <(cd "$run" && {
+  find -L . -mindepth 1 -maxdepth 2 -type d -name 'env*'
+  find -L . -mindepth 4 -maxdepth 4 -type d -path './precision/*/env*/*'
+} | sed 's|^\./||' | sort)
 ((${#envs[@]})) || die "$run holds no envN folder (expected RUN/envN or RUN/<backend>/envN)"
 for env in "${envs[@]}"; do
   [[ -s $run/$env/frames.csv ]] || die "$run/$env has no frames.csv: the run is not finished"

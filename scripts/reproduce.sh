@@ -24,6 +24,8 @@
 #     cores, build included.
 #   full: the thesis' protocol, 10 simulations, every frame (split it into shards on a cluster:
 #     README "Beyond one machine").
+# quick and standard then run the precision study on the frames they recorded
+# (scripts/precision.sh: every image-based strategy, raw and conservative, 32-1200 px).
 # Each environment's cells are split into --jobs shares (default: the number of cores) run at
 # once with one backend thread each, into one run folder. A backend that needs GL runs one share
 # at a time unless --jobs is given: GL runs sharing one GPU slow each other down (8 at once on an
@@ -160,6 +162,13 @@ if [[ $profile == standard ]]; then
       run gl-queries env3 --repeats 2 --frame-stride 30 --objects 50,100 "${culling[@]}"
     fi
   done
+fi
+# The precision study (raw against conservative rasterisation from 32 px) on the frames recorded
+# above: scripts/precision.sh.
+if [[ $profile != full ]]; then
+  precision=(--main "$primary" --env "$envs")
+  ((jobs_given)) && precision+=(--jobs "$jobs")
+  bash scripts/precision.sh "$profile" "$out" "${precision[@]}" || failed+=(precision)
 fi
 if ((report)); then
   /usr/bin/python3 scripts/report.py "$out" --primary "$primary"

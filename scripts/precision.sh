@@ -1,0 +1,156 @@
+#!/usr/bin/env bash
+# The precision study (the thesis' limitation 4; README "Visibility backends"): every image-based
+# strategy in raw mode (pixel centres, the thesis' small depth offset) and in conservative mode
+# (the default) over a resolution sweep that starts far below the thesis' 500 px, on the frames a
+# reproduction profile's main run recorded, so nothing is simulated twice. scripts/reproduce.sh
+# runs it after the main runs; scripts/report.py turns OUT/precision/ into a figure per
+# environment, tables of pairs lost and of conservative/raw CD time, and a section of REPORT.md.
+#
+#   scripts/precision.sh quick|standard|full OUT [--main BACKEND] [--jobs N] [--env LIST]
+#                        [--dry-run]
+#
+# OUT is the profile's result folder. The main run (its backend folder: --main, default cpu) kept
+# the poses it simulated in OUT/<backend>/<env>/recordings/ (one file per object count and
+# simulation; the same whatever the backend); they are linked into
+# each study run's own recordings/, where `cdbench run` finds them and replays them instead of
+# simulating (a missing one is simulated, as in any run). The study writes
+# OUT/precision/<backend>/<env>/raw/ and .../conservative/, each a `cdbench run` folder.
+#
+# What runs: every environment on the cpu backend, and env1 on gl-flags too, so that the GL
+# rasteriser's own pixel-centre sampling is shown beside the CPU rasteriser's:
+#   quick: one simulation; env1 and env2 every 50th frame (6 frames, bodies touch in 5), env3 at
+#     200 tori every 20th frame (15 frames: its contacts are brief and few); 32-1200 px. gl-flags:
+#     env1 every 100th frame (3), without cullide_bvh (on llvmpipe it costs as much as the other
+#     five together: one read-back per batch of boxes).
+#   standard, full: the same frames of the first 2 simulations, 800 px added; gl-flags every
+#     strategy on env1's first simulation, every 50th frame.
+# The raw and the conservative run of an environment are split into the same shares (at least
+# 6), and share i of both runs at the same time, one thread each: the two modes of a cell are
+# timed moments apart under the same load (runs one after the other gave ratios off by 2x on a
+# loaded machine). --jobs N runs N/2 such pairs at once (default: the cores; one pair for a
+# backend that needs GL, as scripts/reproduce.sh runs GL one share at a time).
+# --dry-run prints the cdbench commands instead of running them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+usage() {
+  echo "usage: scripts/precision.sh quick|standard|full OUT [--main BACKEND] [--jobs N] [--env LIST] [--dry-run]" >&2
+  exit 2
+}
+
+(($# >= 2)) || usage
+profile=$1
+out=$2
+shift 2
+case "$profile" in quick|standard|full) ;; *) usage ;; esac
+[[ $out != -* ]] || usage
+main=cpu
+jobs=$(nproc)
+jobs_given=0
+envs=env1,env2,env3
+dry=0
+while (($#)); do
+  case "$1" in
+    --main) main=${2:?--main needs the backend folder of the main run}; shift ;;
+    --jobs) jobs=${2:?--jobs needs a number}; jobs_given=1; shift ;;
+    --env) envs=${2:?--env needs env1, env2 and/or env3}; shift ;;
+    --dry-run) dry=1 ;;
+    *) usage ;;
+  esac
+  shift
+done
+[[ $jobs =~ ^[1-9][0-9]*$ ]] || { echo "precision: --jobs $jobs: expected a positive integer" >&2; exit 2; }
+
+all=cullide,cullide_bvh,quick_cullide,sorted,cis,ours
+case "$profile" in
+  quick)
+    resolutions=32,64,128,256,512,1200 repeats=1
+    gl_plan=("cullide,quick_cullide,sorted,cis,ours" 1 "--frame-stride 100") ;;
+  standard|full)
+    resolutions=32,64,128,256,512,800,1200 repeats=2
+    gl_plan=("$all" 1 "--frame-stride 50") ;;
+esac
+# Frames and object counts per environment (the main run simulated 300 frames of each).
+declare -A frames=([env1]="--frame-stride 50" [env2]="--frame-stride 50" [env3]="--frame-stride 20 --objects 200")
+needs_gl() { build/cdbench backends | grep -q "^$1 .*needs EGL"; }
+# Shares per mode at least: the finer the shares, the closer in time the two modes of a cell are
+# measured; each share builds its scene and ground truth once (env2: ~3 s).
+min_shares=6
+
+# study BACKEND ENV STRATEGIES REPEATS FRAME-OPTIONS: the environment's raw and conservative runs,
+# share by share: share i of the raw run beside share i of the conservative run (the same cells
+# in the same order, so the two modes of a cell are timed at about the same moment, under the same
+# load), `pairs` such pairs at once.
+study() {
+  local backend=$1 env=$2 strategies=$3 repeats=$4 which=$5
+  local src=$out/$main/$2/recordings pairs shares pids=() status=0
+  if needs_gl "$backend" && ((!jobs_given)); then
+    pairs=1
+  else
+    pairs=$((jobs / 2 > 0 ? jobs / 2 : 1))
+  fi
+  shares=$((pairs > min_shares ? pairs : min_shares))
+  echo "== precision: $env on $backend ($profile, $shares shares per mode, $pairs pair(s) at once)" >&2
+  for mode in raw conservative; do
+    local dir=$out/precision/$backend/$env/$mode
+    if ((dry)); then
+      echo "recordings: $src -> $dir/recordings"
+      continue
+    fi
+    mkdir -p "$dir/recordings"
+    if [[ -d $src ]]; then
+      # Hard links where the file system allows them: the recordings are read, never written.
+      cp -l -f "$src"/*.poses "$dir/recordings/" 2>/dev/null || cp -f "$src"/*.poses "$dir/recordings/" 2>/dev/null ||
+        echo "precision: no recording in $src; $env is simulated again" >&2
+    else
+      echo "precision: $src not found; $env is simulated again" >&2
+    fi
+  done
+  for ((i = 1; i <= shares; ++i)); do
+    for mode in raw conservative; do
+      # shellcheck disable=SC2206 # $which holds several options
+      local cmd=(build/cdbench run "configs/$env.yaml" --visibility "$backend" --threads 1 --quiet
+        --strategies "$strategies" --resolutions "$resolutions" --repeats "$repeats" $which
+        --shard "$i/$shares" --out "$out/precision/$backend/$env/$mode")
+      [[ $mode == raw ]] && cmd+=(--raw)
+      if ((dry)); then
+        echo "${cmd[*]}"
+      else
+        "${cmd[@]}" &
+        pids+=($!)
+      fi
+    done
+    if ((${#pids[@]} >= 2 * pairs)); then
+      wait "${pids[0]}" || status=1
+      wait "${pids[1]}" || status=1
+      pids=("${pids[@]:2}")
+    fi
+  done
+  ((dry)) && return 0
+  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+  for mode in raw conservative; do
+    local dir=$out/precision/$backend/$env/$mode
+    [[ -s $dir/frames.csv ]] || build/cdbench merge --out "$dir" "$dir" >/dev/null 2>&1 || status=1
+  done
+  return $status
+}
+
+start=$(date +%s)
+failed=()
+for env in ${envs//,/ }; do
+  [[ -n ${frames[$env]:-} ]] || { echo "precision: $env: not part of the study (env1, env2, env3)" >&2; continue; }
+  study cpu "$env" "$all" "$repeats" "${frames[$env]}" || failed+=("cpu/$env")
+done
+if [[ ,$envs, == *,env1,* ]]; then
+  if ((dry)) || build/cdbench info 2>/dev/null | grep -q "^  gl-flags  *works"; then
+    study gl-flags env1 "${gl_plan[@]}" || failed+=("gl-flags/env1")
+  else
+    echo "precision: gl-flags does not start here; its env1 part is left out" >&2
+  fi
+fi
+((dry)) && exit 0
+echo "precision: $profile study done in $(($(date +%s) - start)) s: $out/precision" >&2
+if ((${#failed[@]})); then
+  echo "precision: failed: ${failed[*]} (rerun to resume)" >&2
+  exit 1
+fi
