@@ -19,16 +19,16 @@
 # What runs: every environment on the cpu backend, and env1 on gl-flags too, so that the GL
 # rasteriser's own pixel-centre sampling is shown beside the CPU rasteriser's:
 #   quick: one simulation; env1 and env2 every 50th frame (6 frames, bodies touch in 5), env3 at
-#     200 tori every 20th frame (15 frames: its contacts are brief and few); 32-1200 px. gl-flags:
-#     env1 every 100th frame (3), without cullide_bvh (on llvmpipe it costs as much as the other
-#     five together: one read-back per batch of boxes).
-#   standard, full: the same frames of the first 2 simulations, 800 px added; gl-flags every
-#     strategy on env1's first simulation, every 50th frame.
-# The raw and the conservative run of an environment are split into the same shares (at least
-# 6), and share i of both runs at the same time, one thread each: the two modes of a cell are
-# timed moments apart under the same load (runs one after the other gave ratios off by 2x on a
-# loaded machine). --jobs N runs N/2 such pairs at once (default: the cores; one pair for a
-# backend that needs GL, as scripts/reproduce.sh runs GL one share at a time).
+#     200 tori every 20th frame (15 frames: its contacts are brief and few); 32, 64, 128, 256, 512
+#     and 1200 px. gl-flags: env1 every 100th frame (3), without cullide_bvh (on llvmpipe it costs
+#     as much as the other five together: one read-back per batch of boxes).
+#   standard, full: the same, on each of the first 2 simulations.
+# The raw and the conservative run of an environment are split into the same shares (one per
+# cell where a share's set-up is cheap), and share i of both runs at the same time, one thread
+# each: the two modes of a cell are timed together under the same load (runs one after the other
+# gave ratios off by 2x on a loaded machine). --jobs N runs N/2 such pairs at once (default: the
+# cores; one pair for a backend that needs GL, as scripts/reproduce.sh runs GL one share at a
+# time).
 # --dry-run prints the cdbench commands instead of running them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -63,19 +63,19 @@ done
 
 all=cullide,cullide_bvh,quick_cullide,sorted,cis,ours
 case "$profile" in
-  quick)
-    resolutions=32,64,128,256,512,1200 repeats=1
-    gl_plan=("cullide,quick_cullide,sorted,cis,ours" 1 "--frame-stride 100") ;;
-  standard|full)
-    resolutions=32,64,128,256,512,800,1200 repeats=2
-    gl_plan=("$all" 1 "--frame-stride 50") ;;
+  quick) repeats=1 ;;
+  standard|full) repeats=2 ;;
 esac
+resolutions=32,64,128,256,512,1200
+# gl-flags without cullide_bvh: on llvmpipe it costs as much as the other five together.
+gl_plan=("cullide,quick_cullide,sorted,cis,ours" "$repeats" "--frame-stride 100")
 # Frames and object counts per environment (the main run simulated 300 frames of each).
 declare -A frames=([env1]="--frame-stride 50" [env2]="--frame-stride 50" [env3]="--frame-stride 20 --objects 200")
 needs_gl() { build/cdbench backends | grep -q "^$1 .*needs EGL"; }
-# Shares per mode at least: the finer the shares, the closer in time the two modes of a cell are
-# measured; each share builds its scene and ground truth once (env2: ~3 s).
-min_shares=6
+# Shares per mode: one per cell, so that the two modes of every cell start together, where a
+# share's set-up (scene, ground truth, recording) takes well under a second; env2's takes ~3 s
+# (the dragons' trees), so its cells are dealt over 6 shares.
+declare -A coarse=([env2]=6)
 
 # study BACKEND ENV STRATEGIES REPEATS FRAME-OPTIONS: the environment's raw and conservative runs,
 # share by share: share i of the raw run beside share i of the conservative run (the same cells
@@ -83,13 +83,18 @@ min_shares=6
 # load), `pairs` such pairs at once.
 study() {
   local backend=$1 env=$2 strategies=$3 repeats=$4 which=$5
-  local src=$out/$main/$2/recordings pairs shares pids=() status=0
+  local src=$out/$main/$2/recordings pairs shares pids=() status=0 t0=$SECONDS
   if needs_gl "$backend" && ((!jobs_given)); then
     pairs=1
   else
     pairs=$((jobs / 2 > 0 ? jobs / 2 : 1))
   fi
-  shares=$((pairs > min_shares ? pairs : min_shares))
+  local strategy_list=${strategies//[^,]/} resolution_list=${resolutions//[^,]/}
+  local cells=$(((${#strategy_list} + 1) * (${#resolution_list} + 1) * repeats))
+  shares=${coarse[$env]:-$cells}
+  ((shares >= pairs)) || shares=$pairs
+  ((shares <= cells)) || shares=$cells
+  ((pairs <= shares)) || pairs=$shares
   echo "== precision: $env on $backend ($profile, $shares shares per mode, $pairs pair(s) at once)" >&2
   for mode in raw conservative; do
     local dir=$out/precision/$backend/$env/$mode
@@ -128,10 +133,16 @@ study() {
   done
   ((dry)) && return 0
   for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+  # One meta.json listing every share (the shares' own shard-*.json, one per cell, then go).
   for mode in raw conservative; do
     local dir=$out/precision/$backend/$env/$mode
-    [[ -s $dir/frames.csv ]] || build/cdbench merge --out "$dir" "$dir" >/dev/null 2>&1 || status=1
+    if build/cdbench merge --out "$dir" "$dir" >/dev/null 2>&1; then
+      rm -f "$dir"/shard-*.json
+    else
+      status=1
+    fi
   done
+  echo "precision: $env on $backend took $((SECONDS - t0)) s" >&2
   return $status
 }
 

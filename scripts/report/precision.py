@@ -10,6 +10,7 @@ mode and the CD times), one figure per environment (precision/fig_precision_<env
 """
 
 import csv
+import re
 import statistics
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -32,7 +33,7 @@ REQUIRED = FRAME_REQUIRED + ("truth_pairs",)
 CSV_COLUMNS = ("environment", "objects", "backend", "strategy", "resolution", "frames", "truth_pairs",
                "raw_lost", "raw_lost_share", "raw_culling_misses", "conservative_lost",
                "conservative_culling_misses", "paired_frames", "raw_cd_ms", "conservative_cd_ms",
-               "cd_ratio", "raw_cull_ms", "conservative_cull_ms", "cull_ratio")
+               "cd_ratio", "raw_cull_ms", "conservative_cull_ms", "cull_ratio", "pixel_ratio")
 # Line style per backend in the figures (raw mode); conservative mode is drawn dashed whatever its backend.
 BACKEND_STYLES = ("-", ":", "-.")
 BACKEND_MARKERS = ("o", "s", "^")
@@ -51,6 +52,7 @@ class Cell:
     cd_ms: dict = field(default_factory=dict)
     cull_ms: dict = field(default_factory=dict)
     pairs: dict = field(default_factory=dict)   # (repeat, frame) -> (true pairs, pairs lost)
+    pixels: int = 0                              # pixels tested and written (0 where the backend counts none)
 
     @property
     def frames(self):
@@ -85,15 +87,21 @@ class Row:
     conservative: Cell = None
 
     def time_ratio(self, times="cd_ms"):
-        """Conservative over raw, mean over the frames both measured; None without common frames."""
+        """(conservative over raw, frames): the median over the frames both measured of each frame's ratio (a frame
+        is the same work in both modes; a median, as on a loaded machine single frames take several times their
+        usual time), None without common frames."""
         if not (self.raw and self.conservative):
             return None, 0
         a, b = getattr(self.conservative, times), getattr(self.raw, times)
-        common = sorted(set(a) & set(b))
-        raw_sum = sum(b[k] for k in common)
-        if not common or raw_sum <= 0:
-            return None, len(common)
-        return sum(a[k] for k in common) / raw_sum, len(common)
+        ratios = [a[k] / b[k] for k in set(a) & set(b) if b[k] > 0]
+        return (statistics.median(ratios) if ratios else None), len(ratios)
+
+    def pixel_ratio(self):
+        """Pixels tested and written, conservative over raw: work that does not depend on the machine's load
+        (None where the backend counts no pixels, as the GL backends)."""
+        if not (self.raw and self.conservative) or self.raw.pixels <= 0:
+            return None
+        return self.conservative.pixels / self.raw.pixels
 
 
 @dataclass
@@ -150,10 +158,12 @@ def _read_mode_run(backend, environment, folder):
         run.meta = _read_meta(folder / "meta.json")
     config = run.meta.get("config", {})
     recorded = config.get("conservative")
+    if not isinstance(recorded, bool):   # a merged run's meta.json has the mode in its culling options only
+        recorded = ((config.get("culling") or {}).get("visibility") or {}).get("conservative")
     if isinstance(recorded, bool) and recorded != (run.mode == "conservative"):
-        raise InputError(f"{folder / 'meta.json'}: config.conservative is {str(recorded).lower()}, but the "
-                         f"folder is {run.mode}/; move the run into "
-                         f"{'conservative' if recorded else 'raw'}/")
+        made = "conservative" if recorded else "raw"
+        raise InputError(f"{folder / 'meta.json'}: records a run in {made} mode, but the folder is {run.mode}/; "
+                         f"move the run into {made}/")
     run.raw_offset = ((config.get("culling") or {}).get("visibility") or {}).get("raw_depth_offset")
     frames_csv = frames_file(folder)
     if not frames_csv.exists():
@@ -171,6 +181,7 @@ def _read_mode_run(backend, environment, folder):
         cell.cd_ms[(r["repeat"], r["frame"])] = r["cd_ms"]
         cell.cull_ms[(r["repeat"], r["frame"])] = r.get("cull_ms", r["cd_ms"])
         cell.pairs[(r["repeat"], r["frame"])] = (r["truth_pairs"], r["false_negatives"])
+        cell.pixels += r.get("pixels_tested", 0) + r.get("pixels_written", 0)
     return run
 
 
@@ -198,9 +209,15 @@ def summary_line(study):
 
 def _label(environment, objects, study):
     """'env3 (200 objects)' where the environment sweeps object counts, else 'env1'."""
-    swept = any(run.environment == environment and (run.meta.get("config", {}).get("object_counts"))
-                for run in study.runs)
+    swept = any(run.environment == environment and _sweeps_objects(run.meta.get("config", {})) for run in study.runs)
     return f"{environment} ({objects} objects)" if swept else environment
+
+
+def _sweeps_objects(config):
+    """Whether the run's config sweeps an object count: its object_counts, or (in a merged run's meta.json, which
+    keeps the config's text only) a sweep.counted_group key."""
+    return bool(config.get("object_counts")) or bool(re.search(r"^\s+counted_group:\s*\S", config.get("text", ""),
+                                                               re.MULTILINE))
 
 
 def _write_csv(study):
@@ -218,7 +235,7 @@ def _write_csv(study):
                         _v(cons, "lost"), _v(cons, "culling_misses"), paired,
                         _f(_mean(raw.cd_ms) if raw else None, 3), _f(_mean(cons.cd_ms) if cons else None, 3),
                         _f(cd, 3), _f(_mean(raw.cull_ms) if raw else None, 3),
-                        _f(_mean(cons.cull_ms) if cons else None, 3), _f(cull, 3)])
+                        _f(_mean(cons.cull_ms) if cons else None, 3), _f(cull, 3), _f(r.pixel_ratio(), 3)])
     tmp.replace(path)
 
 
@@ -306,9 +323,11 @@ def _markdown(study, result_dir, figures):
     out.append("Every image-based strategy on the same recorded frames in two modes: **raw**, rasterising at pixel "
                "centres with the thesis' small depth offset, and **conservative** (the default), where a pixel counts "
                "as covered when a piece meets its square and depth is bounded over it. A pair is lost when the "
-               "ground truth finds it and the strategy's colliding pairs do not (`false_negatives`). Times: CD time "
-               "of conservative mode over raw mode's, mean over the frames both measured. Per cell: "
-               f"`{FOLDER}/precision.csv`.")
+               "ground truth finds it and the strategy's colliding pairs do not (`false_negatives`). Times: each "
+               "frame's CD time in conservative mode over its time in raw mode, the median over the frames both "
+               "measured (a frame is the same work in both; on a loaded machine single frames can take several "
+               "times their usual time, so read single cells with care). Per cell, with the mean times and the "
+               f"pixels each mode visited: `{FOLDER}/precision.csv`.")
     out.append("")
     for note in study.notes:
         out.append(f"- Note: {note}")
@@ -379,7 +398,7 @@ def _time_table(label, backend, rows):
     columns = _columns(rows)
     strategies = strategy_order({r.strategy for r in rows})
     by = {(r.strategy, r.resolution): r for r in rows}
-    out = [f"{label}, {backend}: CD time, conservative / raw", ""]
+    out = [f"{label}, {backend}: CD time, conservative / raw (median over the frames)", ""]
     out.append("| strategy \\ px | " + " | ".join(map(str, columns)) + " |")
     out.append("|---|" + "---:|" * len(columns))
     for s in strategies:
@@ -487,4 +506,12 @@ def _conservative_sentence(study):
                  f"at {lo_row.resolution} px in {lo_row.environment} on {lo_row.backend}, highest {hi_row.strategy} "
                  f"at {hi_row.resolution} px in {hi_row.environment} on {hi_row.backend}; below 1, raw mode is the "
                  f"slower).")
+    pixels = [(r.pixel_ratio(), r) for r in cons if r.pixel_ratio() is not None]
+    if pixels:
+        lo, lo_row = min(pixels, key=lambda t: t[0])
+        hi, hi_row = max(pixels, key=lambda t: t[0])
+        backends = ", ".join(_ordered_backends({r.backend for _, r in pixels}))
+        text += (f" On {backends} it visits {lo:.2f}-{hi:.2f} times raw mode's pixels (tested and written; lowest "
+                 f"{lo_row.strategy} at {lo_row.resolution} px in {lo_row.environment}, highest {hi_row.strategy} at "
+                 f"{hi_row.resolution} px in {hi_row.environment}), a measure of the work that no machine load moves.")
     return text

@@ -174,8 +174,27 @@ class PrecisionOnBadInput(InFreshResultDir):
         data = json.loads(meta.read_text())
         data["config"]["conservative"] = True
         meta.write_text(json.dumps(data))
-        self.assert_one_line_failure(run_report(self.dir), str(meta), "config.conservative is true",
+        self.assert_one_line_failure(run_report(self.dir), str(meta), "records a run in conservative mode",
                                      "move the run into conservative/")
+
+    def test_a_merged_runs_meta_is_read_for_its_mode_and_object_count(self):
+        # `cdbench merge` writes config with path, environment, text and culling only.
+        write_study(self.dir)
+        for mode in ("raw", "conservative"):
+            meta = self.dir / "precision" / "cpu" / "env3" / mode / "meta.json"
+            data = json.loads(meta.read_text())
+            data["config"] = {"path": "configs/env3.yaml", "environment": "env3", "culling": data["config"]["culling"],
+                              "text": "sweep:\n  counted_group: tori\n  object_counts: [50]\n"}
+            meta.write_text(json.dumps(data))
+        result = run_report(self.dir)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("**env3 (200 objects)**", (self.dir / "REPORT.md").read_text())
+        meta = self.dir / "precision" / "cpu" / "env3" / "raw" / "meta.json"
+        data = json.loads(meta.read_text())
+        data["config"]["culling"]["visibility"]["conservative"] = True
+        meta.write_text(json.dumps(data))
+        (self.dir / "REPORT.md").unlink()
+        self.assert_one_line_failure(run_report(self.dir), str(meta), "move the run into conservative/")
 
     def test_an_unknown_mode_folder_is_refused(self):
         write_study(self.dir)
