@@ -280,10 +280,12 @@ def _figure(study, environment, objects):
     ax.set_xlabel("frame-buffer resolution (pixels per side)")
     ax.set_ylabel("true colliding pairs lost (% of the ground truth's)")
     ax.grid(True, alpha=0.3)
-    truth = {r.raw.truth_pairs for b in backends for r in study.rows_of(environment, objects, b) if r.raw}
-    frames = {r.raw.frames for b in backends for r in study.rows_of(environment, objects, b) if r.raw}
-    per_cell = (f"{_count(max(truth))} true pairs over {max(frames)} frames per cell" if len(truth) == 1 and frames
-                else "true pairs per cell differ")
+    # The first backend's cells (cpu where it is there); another backend may have run fewer frames.
+    truth = {r.raw.truth_pairs for r in study.rows_of(environment, objects, backends[0]) if r.raw}
+    frames = {r.raw.frames for r in study.rows_of(environment, objects, backends[0]) if r.raw}
+    per_cell = (f"{_count(max(truth))} true pairs over {max(frames)} frames per cell"
+                + (f" on {backends[0]}" if len(backends) > 1 else "")
+                if len(truth) == 1 and frames else "true pairs per cell differ")
     ax.set_title(f"{_label(environment, objects, study)}: pairs lost in raw mode ({per_cell})", fontsize=11)
     handles = [Line2D([], [], color=colour(s, strategies), linewidth=2, label=s) for s in strategies]
     for i, backend in enumerate(backends):
