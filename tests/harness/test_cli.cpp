@@ -171,6 +171,8 @@ TEST(Cli, ARunPrintsItsTableAndWritesItBesideTheFrames) {
                                                 " --quiet 2>/dev/null");
   ASSERT_EQ(quiet.exitCode, 0);
   EXPECT_EQ(quiet.output, "");
+}
+
 // Raw mode (pixel centres, the thesis' small depth offset) is what the precision study measures:
 // on env1's frame 60 (~40 touching pairs) at 32 px, CULLIDE and CIS lose contacts in raw mode and
 // none in the default conservative mode, on the same recorded frames; meta.json records the mode
