@@ -45,6 +45,30 @@ SceneGeometry toriScene(int count, std::mt19937_64& rng, std::vector<Pose>& pose
   return scene;
 }
 
+// Some triangles of `o`, each kept with probability `keep`, in no order (lists need not be sorted).
+std::vector<std::uint32_t> randomSubset(const SceneGeometry& scene, ObjectId o, double keep,
+                                        std::mt19937_64& rng) {
+  std::bernoulli_distribution take(keep);
+  std::vector<std::uint32_t> out;
+  const auto n = static_cast<std::uint32_t>(scene.meshOf(o).triangleCount());
+  for (std::uint32_t t = 0; t < n; ++t)
+    if (take(rng)) out.push_back(t);
+  std::shuffle(out.begin(), out.end(), rng);
+  return out;
+}
+
+// `count` boxes somewhere in the tori's box, of random sizes and turns.
+std::vector<OrientedBox> randomBoxes(int count, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> at(-1.2, 1.2), size(0.05, 0.6), angle(-3, 3);
+  std::vector<OrientedBox> out(static_cast<std::size_t>(count));
+  for (OrientedBox& b : out) {
+    b.center = Eigen::Vector3d(at(rng), at(rng), at(rng));
+    b.halfExtents = Eigen::Vector3d(size(rng), size(rng), size(rng));
+    b.axes = Eigen::AngleAxisd(angle(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
+  }
+  return out;
+}
+
 // A random scripted workload, the same for any backend given the same seed.
 class Workload {
  public:
@@ -74,25 +98,8 @@ class Workload {
   }
 
  private:
-  std::vector<std::uint32_t> subset(ObjectId o, double keep) {
-    std::bernoulli_distribution take(keep);
-    std::vector<std::uint32_t> out;
-    const auto n = static_cast<std::uint32_t>(scene_.meshOf(o).triangleCount());
-    for (std::uint32_t t = 0; t < n; ++t)
-      if (take(rng_)) out.push_back(t);
-    std::shuffle(out.begin(), out.end(), rng_);  // lists need not be sorted
-    return out;
-  }
-  std::vector<OrientedBox> boxes(int count) {
-    std::uniform_real_distribution<double> at(-1.2, 1.2), size(0.05, 0.6), angle(-3, 3);
-    std::vector<OrientedBox> out(static_cast<std::size_t>(count));
-    for (OrientedBox& b : out) {
-      b.center = Eigen::Vector3d(at(rng_), at(rng_), at(rng_));
-      b.halfExtents = Eigen::Vector3d(size(rng_), size(rng_), size(rng_));
-      b.axes = Eigen::AngleAxisd(angle(rng_), Eigen::Vector3d::UnitY()).toRotationMatrix();
-    }
-    return out;
-  }
+  std::vector<std::uint32_t> subset(ObjectId o, double keep) { return randomSubset(scene_, o, keep, rng_); }
+  std::vector<OrientedBox> boxes(int count) { return randomBoxes(count, rng_); }
   void drawAll(VisibilityBackend& backend) {
     std::uniform_int_distribution<int> pick(0, 5);
     for (ObjectId o = 0; o < scene_.objectCount(); ++o) {
@@ -227,26 +234,10 @@ class PassWorkload {
   }
 
  private:
-  // Some triangles of `o`, in no order.
   std::vector<std::uint32_t> subset(ObjectId o, double keep, std::mt19937_64& rng) const {
-    std::bernoulli_distribution take(keep);
-    std::vector<std::uint32_t> out;
-    const auto n = static_cast<std::uint32_t>(scene_.meshOf(o).triangleCount());
-    for (std::uint32_t t = 0; t < n; ++t)
-      if (take(rng)) out.push_back(t);
-    std::shuffle(out.begin(), out.end(), rng);
-    return out;
+    return randomSubset(scene_, o, keep, rng);
   }
-  static std::vector<OrientedBox> boxes(int count, std::mt19937_64& rng) {
-    std::uniform_real_distribution<double> at(-1.2, 1.2), size(0.05, 0.6), angle(-3, 3);
-    std::vector<OrientedBox> out(static_cast<std::size_t>(count));
-    for (OrientedBox& b : out) {
-      b.center = Eigen::Vector3d(at(rng), at(rng), at(rng));
-      b.halfExtents = Eigen::Vector3d(size(rng), size(rng), size(rng));
-      b.axes = Eigen::AngleAxisd(angle(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
-    }
-    return out;
-  }
+  static std::vector<OrientedBox> boxes(int count, std::mt19937_64& rng) { return randomBoxes(count, rng); }
 
   const SceneGeometry& scene_;
   std::vector<int> writeKind_;
