@@ -113,7 +113,8 @@ run() {
 
 # snapshot ENV: the picture at the head of the environment's report section, from the poses the run
 # recorded in its recordings/ folder (nothing is simulated again): the first simulation of the
-# fewest objects, at its measured frame with the most colliding pairs (the earliest of equals),
+# fewest objects that has a colliding pair at a measured frame (of the fewest objects when none
+# has), at its measured frame with the most colliding pairs (the earliest of equals),
 # objects coloured by the sets of ours on the run's backend at 800 pixels. Seconds per environment;
 # a failure costs the report its picture, not the run.
 snapshot() {
@@ -123,7 +124,10 @@ snapshot() {
     $col["repeat"] == 0 {
       n = $col["objects"] + 0; f = $col["frame"] + 0
       t = $col["truth_pairs"] + 0; if ($col["colliding_pairs"] + 0 > t) t = $col["colliding_pairs"] + 0
-      if (!seen || n < bn || (n == bn && (t > bt || (t == bt && f < bf)))) { seen = 1; bn = n; bt = t; bf = f }
+      p = t > 0
+      if (!seen || p > bp || (p == bp && (n < bn || (n == bn && (t > bt || (t == bt && f < bf)))))) {
+        seen = 1; bp = p; bn = n; bt = t; bf = f
+      }
     }
     END { if (seen) print bn, bf }' "$dir/frames.csv")
   [[ -n $pick ]] || return 0
