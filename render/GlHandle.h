@@ -1,5 +1,6 @@
 #pragma once
 // Owning handles for OpenGL object names, deleted with the matching glDelete* call.
+#include <span>
 #include <utility>
 
 #include "render/Gl.h"
@@ -51,5 +52,15 @@ using GlRenderbuffer = GlHandle<gldelete::renderbuffer>;
 using GlTexture = GlHandle<gldelete::texture>;
 using GlProgramName = GlHandle<gldelete::program>;
 using GlShaderName = GlHandle<gldelete::shader>;
+
+// A buffer holding `data`, its size fixed and its contents never changed by the client.
+template <class T>
+[[nodiscard]] GlBuffer immutableBuffer(std::span<const T> data) {
+  GLuint name = 0;
+  glCreateBuffers(1, &name);
+  GlBuffer buffer(name);
+  glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(data.size_bytes()), data.data(), 0);
+  return buffer;
+}
 
 }  // namespace cdb

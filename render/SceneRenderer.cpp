@@ -132,6 +132,7 @@ SceneRenderer::~SceneRenderer() {
 }
 
 void SceneRenderer::attach(const SceneGeometry& scene) {
+  checkSceneIndices(scene);
   context_->makeCurrent();
   std::vector<float> vertexData;  // position, normal
   std::vector<std::uint32_t> indexData;
@@ -139,10 +140,6 @@ void SceneRenderer::attach(const SceneGeometry& scene) {
   for (const Mesh& mesh : scene.meshes) {
     std::vector<Eigen::Vector3f> normals(mesh.vertices.size(), Eigen::Vector3f::Zero());
     for (const Triangle& t : mesh.triangles) {
-      for (std::uint32_t i : t)
-        if (i >= mesh.vertices.size())
-          throw InputError("mesh '" + mesh.name + "' has a triangle index " + std::to_string(i) +
-                           " beyond its " + std::to_string(mesh.vertices.size()) + " vertices");
       // Area-weighted: the cross product's length is twice the area.
       const Eigen::Vector3f n = (mesh.vertices[t[1]] - mesh.vertices[t[0]])
                                     .cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
@@ -173,23 +170,11 @@ void SceneRenderer::attach(const SceneGeometry& scene) {
     throw RunError("the scene has too many vertices for 32-bit indices");
 
   objectMesh_.clear();
-  for (const SceneObject& o : scene.objects) {
-    if (o.mesh >= scene.meshes.size())
-      throw InputError("scene object uses mesh " + std::to_string(o.mesh) + " of " +
-                       std::to_string(scene.meshes.size()));
-    objectMesh_.push_back(o.mesh);
-  }
+  for (const SceneObject& o : scene.objects) objectMesh_.push_back(o.mesh);
 
+  vertices_ = immutableBuffer(std::span<const float>(vertexData));
+  indices_ = immutableBuffer(std::span<const std::uint32_t>(indexData));
   GLuint name = 0;
-  glCreateBuffers(1, &name);
-  vertices_ = GlBuffer(name);
-  glNamedBufferStorage(vertices_.get(), static_cast<GLsizeiptr>(vertexData.size() * sizeof(float)),
-                       vertexData.data(), 0);
-  glCreateBuffers(1, &name);
-  indices_ = GlBuffer(name);
-  glNamedBufferStorage(indices_.get(),
-                       static_cast<GLsizeiptr>(indexData.size() * sizeof(std::uint32_t)),
-                       indexData.data(), 0);
   glCreateVertexArrays(1, &name);
   vao_ = GlVertexArray(name);
   glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, 6 * sizeof(float));

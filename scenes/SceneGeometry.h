@@ -25,4 +25,8 @@ struct SceneGeometry {
   [[nodiscard]] std::size_t objectCount() const { return objects.size(); }
 };
 
+// Throws InputError when an object names a mesh the scene does not have or a triangle a vertex its
+// mesh does not have: what every backend and renderer checks before it indexes them.
+void checkSceneIndices(const SceneGeometry& scene);
+
 }  // namespace cdb

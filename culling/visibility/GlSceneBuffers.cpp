@@ -31,6 +31,7 @@ Eigen::Matrix4f boxMatrix(const OrientedBox& box) {
 }
 
 void GlSceneBuffers::attach(const SceneGeometry& scene) {
+  checkSceneIndices(scene);
   std::vector<const Mesh*> all;
   for (const Mesh& m : scene.meshes) all.push_back(&m);
   const Mesh cube = unitCube();
@@ -54,34 +55,16 @@ void GlSceneBuffers::attach(const SceneGeometry& scene) {
     slot.firstTriangle = static_cast<std::uint32_t>(indexData.size() / 3);
     slot.triangleCount = static_cast<std::uint32_t>(m->triangles.size());
     for (const auto& v : m->vertices) vertexData.insert(vertexData.end(), {v.x(), v.y(), v.z()});
-    for (const Triangle& t : m->triangles) {
-      for (std::uint32_t i : t) {
-        if (i >= m->vertices.size())
-          throw InputError("mesh '" + m->name + "' has a triangle index " + std::to_string(i) +
-                           " beyond its " + std::to_string(m->vertices.size()) + " vertices");
-        indexData.push_back(baseVertex + i);
-      }
-    }
+    for (const Triangle& t : m->triangles)
+      for (std::uint32_t i : t) indexData.push_back(baseVertex + i);
     meshes_.push_back(slot);
   }
   objectMesh_.clear();
-  for (const SceneObject& o : scene.objects) {
-    if (o.mesh >= scene.meshes.size())
-      throw InputError("scene object uses mesh " + std::to_string(o.mesh) + " of " +
-                       std::to_string(scene.meshes.size()));
-    objectMesh_.push_back(o.mesh);
-  }
+  for (const SceneObject& o : scene.objects) objectMesh_.push_back(o.mesh);
 
+  vertices_ = immutableBuffer(std::span<const float>(vertexData));
+  indices_ = immutableBuffer(std::span<const std::uint32_t>(indexData));
   GLuint name = 0;
-  glCreateBuffers(1, &name);
-  vertices_ = GlBuffer(name);
-  glNamedBufferStorage(vertices_.get(), static_cast<GLsizeiptr>(vertexData.size() * sizeof(float)),
-                       vertexData.data(), 0);
-  glCreateBuffers(1, &name);
-  indices_ = GlBuffer(name);
-  glNamedBufferStorage(indices_.get(),
-                       static_cast<GLsizeiptr>(indexData.size() * sizeof(std::uint32_t)),
-                       indexData.data(), 0);
   glCreateBuffers(1, &name);
   models_ = GlBuffer(name);
   // Identity poses until the first frame, so the buffer is never unbacked.

@@ -46,16 +46,7 @@ void CpuRasterBackend::setEvaluation(const CpuEvaluation& evaluation) {
 
 void CpuRasterBackend::attachScene(const SceneGeometry& scene) {
   flush();
-  for (const SceneObject& o : scene.objects)
-    if (o.mesh >= scene.meshes.size())
-      throw InputError("scene object uses mesh " + std::to_string(o.mesh) + " of " +
-                       std::to_string(scene.meshes.size()));
-  for (const Mesh& m : scene.meshes)
-    for (const Triangle& t : m.triangles)
-      for (std::uint32_t i : t)
-        if (i >= m.vertices.size())
-          throw InputError("mesh '" + m.name + "' has a triangle index " + std::to_string(i) +
-                           " beyond its " + std::to_string(m.vertices.size()) + " vertices");
+  checkSceneIndices(scene);
   releaseRetained();  // its pending writes drew the old scene's meshes
   scene_ = &scene;
   meshBounds_ = meshBoundsOf(scene);
