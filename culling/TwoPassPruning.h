@@ -5,6 +5,7 @@
 // The strategies differ only in the order and in how the two passes use the depth buffer.
 #include <array>
 #include <cstdint>
+#include <numeric>
 #include <vector>
 
 #include "culling/CullingStrategy.h"
@@ -74,6 +75,21 @@ void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
 // Each object with its whole triangle list written out, for the triangle level.
 [[nodiscard]] std::vector<SetMember> withAllTriangles(const SceneGeometry& scene,
                                                       const std::vector<ObjectId>& objects);
+
+// CULLIDE's two levels along its three axes: every object pruned along each axis in turn
+// (`pruneObjects(pcs, axis)`), then the triangles of the objects left (`pruneTriangles(members,
+// axis)`); returns the members left. The strategy's passes are what the two callables draw.
+template <class PruneObjects, class PruneTriangles>
+[[nodiscard]] std::vector<SetMember> pruneCullideLevels(const SceneGeometry& scene,
+                                                        PruneObjects&& pruneObjects,
+                                                        PruneTriangles&& pruneTriangles) {
+  std::vector<ObjectId> pcs(scene.objectCount());
+  std::iota(pcs.begin(), pcs.end(), ObjectId{0});
+  for (const auto& axis : kCullideAxes) pruneObjects(pcs, axis);
+  std::vector<SetMember> members = withAllTriangles(scene, pcs);
+  for (const auto& axis : kCullideAxes) pruneTriangles(members, axis);
+  return members;
+}
 
 // The one potentially colliding set the triangle level leaves (none when it is empty), with its
 // counters; members keeping every triangle get the empty "all triangles" list.

@@ -74,12 +74,9 @@ CullingResult OrderIndependentCullide::cull(const FrameInput& frame) {
   backend_->setPoses(frame.poses);
   bounds_.update(frame.poses);
 
-  std::vector<ObjectId> pcs(scene_->objectCount());
-  for (std::size_t i = 0; i < pcs.size(); ++i) pcs[i] = static_cast<ObjectId>(i);
-  for (const auto& axis : kCullideAxes) pruneObjects(pcs, axis);
-
-  std::vector<SetMember> members = withAllTriangles(*scene_, pcs);
-  for (const auto& axis : kCullideAxes) pruneTriangles(members, axis);
+  std::vector<SetMember> members = pruneCullideLevels(
+      *scene_, [this](std::vector<ObjectId>& pcs, const Eigen::Vector3d& axis) { pruneObjects(pcs, axis); },
+      [this](std::vector<SetMember>& m, const Eigen::Vector3d& axis) { pruneTriangles(m, axis); });
   return singleSetResult(*scene_, std::move(members), backend_->counters() - before);
 }
 
