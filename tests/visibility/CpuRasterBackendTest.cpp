@@ -3,10 +3,13 @@
 // string, and its counters of pixels visited.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "culling/visibility/cpu/CpuMeshBounds.h"
 #include "culling/visibility/cpu/CpuRasterBackend.h"
 #include "tests/visibility/GlTestSupport.h"
 
@@ -143,6 +146,80 @@ TEST(CpuRasterBackend, PassGoesOnAfterAFetch) {
   EXPECT_EQ(answers[front], 1);
   EXPECT_LT(backend.storedDepth(32, 32), 1.f);  // A's depth is there
   EXPECT_EQ(backend.storedDepth(0, 0), 1.f);    // the clear beside it
+}
+
+// A 20 x 20 grid of squares (two triangles each, row by row) in the plane z = z0 over [-1, 1]^2.
+Mesh gridMesh(float z0) {
+  Mesh m;
+  m.name = "grid";
+  constexpr int kCells = 20;
+  for (int j = 0; j <= kCells; ++j)
+    for (int i = 0; i <= kCells; ++i)
+      m.vertices.emplace_back(-1.f + 2.f * i / kCells, -1.f + 2.f * j / kCells, z0);
+  for (int j = 0; j < kCells; ++j)
+    for (int i = 0; i < kCells; ++i) {
+      const std::uint32_t a = j * (kCells + 1) + i, b = a + 1, c = a + kCells + 1, d = c + 1;
+      m.triangles.push_back({a, b, d});
+      m.triangles.push_back({a, d, c});
+    }
+  return m;
+}
+
+// The backend draws a mesh's triangles in an order of its own (CpuMeshBounds' draw order), so a
+// batch's answers are renumbered back: each triangle's answer is the same however the triangles
+// were issued (whole, listed in any order and with repeats, as part of the mesh, or alone).
+TEST(CpuRasterBackend, BatchAnswersFollowTheIssuedOrder) {
+  // The grid behind a square that hides its half x < 0.
+  const SceneGeometry scene = test::sceneOf({test::squareMesh(-1, 0, 0, 1), gridMesh(1)});
+  const std::vector<std::uint32_t> order = drawOrderOf(scene.meshes[1]);
+  const std::size_t n = scene.meshes[1].triangleCount();
+  std::vector<std::uint32_t> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::uint32_t t = 0; t < n; ++t) ASSERT_EQ(sorted[t], t);  // a permutation
+  ASSERT_FALSE(std::is_sorted(order.begin(), order.end()));      // and not the mesh's own order
+
+  for (int threads : {1, 2}) {
+    CpuRasterBackend backend(VisibilityOptions{true, 1e-5, threads});
+    backend.attachScene(scene);
+    backend.setPoses(test::identityPoses(scene.objectCount()));
+    backend.beginPass({Eigen::Vector3d::UnitZ(),
+                       Aabb(Eigen::Vector3d(-2, -2, -1), Eigen::Vector3d(2, 2, 2)), 128},
+                      DepthUse::Fresh);
+    backend.writeRange(test::wholeOf(scene, 0));
+    const QueryIndex whole = backend.queryTriangles(test::wholeOf(scene, 1));
+    std::vector<std::uint32_t> listed(n);
+    std::iota(listed.begin(), listed.end(), 0u);
+    std::shuffle(listed.begin(), listed.end(), std::mt19937(7));
+    listed.push_back(listed[5]);
+    const QueryIndex shuffled = backend.queryTriangles(1, listed);
+    const QueryIndex part = backend.queryTriangles(MeshRange{1, 100, 300});
+    std::vector<QueryIndex> alone(n);
+    for (std::uint32_t t = 0; t < n; ++t) {
+      const std::uint32_t one[] = {t};
+      alone[t] = backend.queryTriangles(1, one);
+    }
+    std::vector<std::uint8_t> answers;
+    backend.fetchResults(answers);
+
+    int visible = 0;
+    for (std::uint32_t t = 0; t < n; ++t) {
+      const std::uint8_t a = answers[alone[t]];
+      visible += a;
+      EXPECT_EQ(answers[whole + t], a) << "triangle " << t;
+      if (t >= 100 && t < 400) EXPECT_EQ(answers[part + t - 100], a) << "triangle " << t;
+    }
+    for (std::size_t k = 0; k < listed.size(); ++k)
+      EXPECT_EQ(answers[shuffled + k], answers[alone[listed[k]]]) << "entry " << k;
+    // Half hidden, half in view (the column at x = 0 hidden too, conservatively).
+    EXPECT_GT(visible, static_cast<int>(n) / 3);
+    EXPECT_LT(visible, static_cast<int>(n) / 2);
+    // Each triangle of the hidden half is occluded, of the other half visible.
+    for (std::uint32_t t = 0; t < n; ++t) {
+      const float cx = scene.meshes[1].vertices[scene.meshes[1].triangles[t][0]].x();
+      if (cx < -0.15f) EXPECT_EQ(answers[alone[t]], 0) << "triangle " << t;
+      if (cx > 0.15f) EXPECT_EQ(answers[alone[t]], 1) << "triangle " << t;
+    }
+  }
 }
 
 TEST(CpuRasterBackend, NamesItsInstructionSetAndThreads) {

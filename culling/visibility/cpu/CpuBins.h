@@ -13,6 +13,7 @@
 
 #include "culling/visibility/cpu/CpuMeshBounds.h"
 #include "culling/visibility/cpu/CpuRecording.h"
+#include "culling/visibility/cpu/CpuScreenVertices.h"
 
 namespace cdb {
 
@@ -82,6 +83,7 @@ struct CpuBins {
 struct CpuRun {
   CpuRecording recording;
   CpuBins bins;
+  CpuScreenVertices vertices;
 };
 
 // Tiles of a frame (per row and column) at `tileSize` pixels.

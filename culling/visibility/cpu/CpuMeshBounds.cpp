@@ -1,10 +1,53 @@
 #include "culling/visibility/cpu/CpuMeshBounds.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numeric>
 #include <unordered_map>
 
 #include "scenes/MeshMeasures.h"
 
 namespace cdb {
+
+namespace {
+
+// The low 10 bits of v spread to every third bit.
+std::uint32_t spreadBits(std::uint32_t v) {
+  v &= 0x3ffu;
+  v = (v | (v << 16)) & 0x030000ffu;
+  v = (v | (v << 8)) & 0x0300f00fu;
+  v = (v | (v << 4)) & 0x030c30c3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> drawOrderOf(const Mesh& mesh) {
+  const std::size_t n = mesh.triangles.size();
+  Eigen::AlignedBox3f box;
+  for (const Eigen::Vector3f& v : mesh.vertices)
+    if (v.allFinite()) box.extend(v);
+  const float extent = box.isEmpty() ? 0.f : box.sizes().maxCoeff();
+  const float scale = extent > 0.f ? 1023.f / extent : 0.f;
+  std::vector<std::uint32_t> code(n, 0);
+  for (std::size_t t = 0; t < n; ++t) {
+    const Triangle& tri = mesh.triangles[t];
+    const Eigen::Vector3f centroid =
+        (mesh.vertices[tri[0]] + mesh.vertices[tri[1]] + mesh.vertices[tri[2]]) / 3.f;
+    if (!centroid.allFinite()) continue;
+    std::uint32_t cell[3];
+    for (int a = 0; a < 3; ++a)
+      cell[a] = static_cast<std::uint32_t>(
+          std::clamp((centroid[a] - box.min()[a]) * scale, 0.f, 1023.f));
+    code[t] = spreadBits(cell[0]) | spreadBits(cell[1]) << 1 | spreadBits(cell[2]) << 2;
+  }
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return code[a] < code[b]; });
+  return order;
+}
 
 std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
   std::vector<CpuMeshBounds> all;
@@ -13,36 +56,41 @@ std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
     CpuMeshBounds& b = all.emplace_back();
     const double volume = isClosedMesh(m) ? signedVolume(m) : 0.0;
     b.winding = volume > 0 ? 1 : volume < 0 ? -1 : 0;
-    b.triangles.reserve(m.triangles.size());
-    for (const Triangle& t : m.triangles) {
+    const std::size_t n = m.triangles.size();
+    b.order = drawOrderOf(m);
+    b.position.resize(n);
+    for (std::size_t p = 0; p < n; ++p) b.position[b.order[p]] = static_cast<std::uint32_t>(p);
+    b.triangles.reserve(n);
+    for (const std::uint32_t tri : b.order) {
+      const Triangle& t = m.triangles[tri];
       Eigen::AlignedBox3f box(m.vertices[t[0]]);
       box.extend(m.vertices[t[1]]).extend(m.vertices[t[2]]);
       b.triangles.push_back(box);
     }
-    b.cornersInChunk.resize(m.triangles.size());
+    b.cornersInChunk.resize(n);
     std::unordered_map<std::uint32_t, std::uint8_t> local;
-    for (std::size_t first = 0; first < b.triangles.size(); first += kChunkTriangles) {
+    for (std::size_t first = 0; first < n; first += kChunkTriangles) {
       Eigen::AlignedBox3f chunk;
-      const std::size_t end = std::min<std::size_t>(first + kChunkTriangles, b.triangles.size());
+      const std::size_t end = std::min<std::size_t>(first + kChunkTriangles, n);
       b.chunkVertexStart.push_back(static_cast<std::uint32_t>(b.chunkVertices.size()));
       local.clear();
-      for (std::size_t t = first; t < end; ++t) {
-        chunk.extend(b.triangles[t]);
+      for (std::size_t p = first; p < end; ++p) {
+        chunk.extend(b.triangles[p]);
         for (int v = 0; v < 3; ++v) {
-          const std::uint32_t vertex = m.triangles[t][v];
+          const std::uint32_t vertex = m.triangles[b.order[p]][v];
           const auto [at, added] =
               local.try_emplace(vertex, static_cast<std::uint8_t>(local.size()));
           if (added) b.chunkVertices.push_back(vertex);
-          b.cornersInChunk[t][v] = at->second;
+          b.cornersInChunk[p][v] = at->second;
         }
       }
       b.chunks.push_back(chunk);
     }
     b.chunkVertexStart.push_back(static_cast<std::uint32_t>(b.chunkVertices.size()));
-    for (std::size_t first = 0; first < b.triangles.size(); first += kPartTriangles) {
+    for (std::size_t first = 0; first < n; first += kPartTriangles) {
       Eigen::AlignedBox3f part;
-      const std::size_t end = std::min<std::size_t>(first + kPartTriangles, b.triangles.size());
-      for (std::size_t t = first; t < end; ++t) part.extend(b.triangles[t]);
+      const std::size_t end = std::min<std::size_t>(first + kPartTriangles, n);
+      for (std::size_t p = first; p < end; ++p) part.extend(b.triangles[p]);
       b.parts.push_back(part);
     }
   }

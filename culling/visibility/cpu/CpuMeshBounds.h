@@ -1,7 +1,15 @@
 #pragma once
 // What binning needs to know of each mesh of the attached scene without touching its triangles:
-// a box per chunk of consecutive triangles and one per triangle (in the mesh's own frame), and
-// whether it is closed with a consistent winding (see CpuCommand::winding).
+// the order the backend draws its triangles in, a box per chunk of consecutive triangles of that
+// order and one per triangle (in the mesh's own frame), and whether it is closed with a consistent
+// winding (see CpuCommand::winding).
+//
+// Within one command the order of its triangles changes nothing (a write keeps the nearest depth,
+// a test looks for any occluded sample, a batch answers per triangle), so the backend draws a
+// mesh's triangles in an order of its own: along a Morton curve through their centroids. A chunk
+// is then a patch of the surface, not a strip across it (the Stanford dragon's file order makes
+// chunks of 64 triangles that span 70% of its length), so a chunk's rectangle is small, touches
+// one tile mostly, and its depth range is narrow.
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
@@ -12,8 +20,8 @@
 namespace cdb {
 
 // Triangles of a command are binned, and rasterised in one go, in chunks of this many: small
-// enough that a chunk's box is much tighter than its mesh's (a torus' 800 triangles make 13 chunks
-// whose boxes are bands around its tube), large enough that binning costs little beside them.
+// enough that a chunk's box is much tighter than its mesh's, large enough that binning costs
+// little beside them.
 inline constexpr std::uint32_t kChunkTriangles = 64;
 static_assert(3 * kChunkTriangles <= 256, "a chunk's vertices are numbered in a byte");
 // A chunk drawn in a tile is first sorted out by parts of this many triangles: a part whose box
@@ -21,19 +29,26 @@ static_assert(3 * kChunkTriangles <= 256, "a chunk's vertices are numbered in a 
 inline constexpr std::uint32_t kPartTriangles = 16;
 static_assert(kChunkTriangles % kPartTriangles == 0);
 
+// Everything but `order` and `position` is indexed by position in the draw order.
 struct CpuMeshBounds {
   std::int8_t winding = 0;
-  std::vector<Eigen::AlignedBox3f> chunks;     // chunk c: triangles [c, c + 1) * kChunkTriangles
-  std::vector<Eigen::AlignedBox3f> parts;      // part p: triangles [p, p + 1) * kPartTriangles
-  std::vector<Eigen::AlignedBox3f> triangles;  // per triangle
+  std::vector<std::uint32_t> order;     // position -> mesh triangle
+  std::vector<std::uint32_t> position;  // mesh triangle -> position
+  std::vector<Eigen::AlignedBox3f> chunks;     // chunk c: positions [c, c + 1) * kChunkTriangles
+  std::vector<Eigen::AlignedBox3f> parts;      // part p: positions [p, p + 1) * kPartTriangles
+  std::vector<Eigen::AlignedBox3f> triangles;  // per position
   // The vertices of chunk c, each once (a vertex is shared by about six triangles, so a chunk is
-  // drawn with a third as many transforms): chunkVertices[chunkVertexStart[c] ...
-  // chunkVertexStart[c + 1]), and per triangle its corners among its chunk's vertices.
+  // drawn with a fraction as many transforms): chunkVertices[chunkVertexStart[c] ...
+  // chunkVertexStart[c + 1]), and per position its triangle's corners among its chunk's vertices.
   std::vector<std::uint32_t> chunkVertexStart;
   std::vector<std::uint32_t> chunkVertices;
   std::vector<std::array<std::uint8_t, 3>> cornersInChunk;
 };
 
 [[nodiscard]] std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene);
+
+// The draw order of `mesh`'s triangles: by the Morton code of their centroids in the mesh's
+// bounding cube (10 bits an axis; non-finite centroids first), ties by triangle index.
+[[nodiscard]] std::vector<std::uint32_t> drawOrderOf(const Mesh& mesh);
 
 }  // namespace cdb

@@ -7,11 +7,6 @@ namespace cdb {
 
 namespace {
 
-inline void toScreen(const ScreenMatrix& m, const Eigen::Vector3f& v, ScreenTriangle& t, int i) {
-  const Eigen::Vector3d p = m.leftCols<3>() * v.cast<double>() + m.col(3);
-  t.x[i] = p.x(), t.y[i] = p.y(), t.k[i] = p.z();
-}
-
 // Whether a triangle of a closed mesh can decide its command. Along every line of sight a closed
 // surface is crossed as often toward the viewer as away from it (its winding number is 0 far
 // away), so behind each crossing of a face turned toward the viewer lies one of a face turned away,
@@ -60,23 +55,19 @@ std::array<bool, 6> decidingFaces(const ScreenMatrix& cube, CpuCommand::Role rol
 
 }  // namespace
 
-void chunkPieces(const CpuRecording& recording, const Mesh& mesh, const CpuMeshBounds& bounds,
+void chunkPieces(const CpuRun& run, const Mesh& mesh, const CpuMeshBounds& bounds,
                  const CpuCommand& c, const CpuItem& item, const PixelRect& window, double marginPx,
                  CpuPieces& out) {
   out.areQuads = false;
   out.count = 0;
   const bool listed = c.source == CpuCommand::Source::Listed;
   const auto triangleAt = [&](std::uint32_t i) {
-    return listed ? recording.listed[item.first + i] : item.first + i;
+    return listed ? run.recording.listed[item.first + i] : item.first + i;
   };
-  // Each mesh vertex is transformed once, when a triangle first needs it: a triangle's corners are
-  // vertices of its mesh chunk (CpuMeshBounds::cornersInChunk), and a list is in ascending order
-  // almost always, so the vertices of one chunk are kept at a time.
+  // A triangle's corners are vertices of its mesh chunk (CpuMeshBounds::cornersInChunk), and a
+  // list is in ascending order almost always, so one chunk's screen vertices are at hand at a time.
   std::uint32_t chunk = ~std::uint32_t{0};
-  const std::uint32_t* chunkVertices = nullptr;
-  double vx[3 * kChunkTriangles], vy[3 * kChunkTriangles], vk[3 * kChunkTriangles];
-  bool done[3 * kChunkTriangles];
-  ScreenTriangle vertex;  // a vertex in slot 0
+  const CpuScreenVertex* vertices = nullptr;
   // A pixel box lies within [minX - margin - 1, maxX + margin] (and the same in y), in either
   // rasterisation mode; a little more is left for rounding.
   const double reach = marginPx + 2.0;
@@ -90,18 +81,13 @@ void chunkPieces(const CpuRecording& recording, const Mesh& mesh, const CpuMeshB
       const std::uint32_t tri = triangleAt(i);
       if (tri / kChunkTriangles != chunk) {
         chunk = tri / kChunkTriangles;
-        chunkVertices = bounds.chunkVertices.data() + bounds.chunkVertexStart[chunk];
-        std::fill(std::begin(done), std::end(done), false);
+        vertices = run.vertices.chunk(c, mesh, bounds, chunk);
       }
       ScreenTriangle& s = out.triangles[kept];
       const auto& at = bounds.cornersInChunk[tri];
       for (int v = 0; v < 3; ++v) {
-        const std::uint8_t a = at[v];
-        if (!done[a]) {
-          toScreen(c.toScreen, mesh.vertices[chunkVertices[a]], vertex, 0);
-          vx[a] = vertex.x[0], vy[a] = vertex.y[0], vk[a] = vertex.k[0], done[a] = true;
-        }
-        s.x[v] = vx[a], s.y[v] = vy[a], s.k[v] = vk[a];
+        const CpuScreenVertex& p = vertices[at[v]];
+        s.x[v] = p.x, s.y[v] = p.y, s.k[v] = p.k;
       }
       // (A non-finite vertex fails every comparison and is kept: the set-up drops it.)
       const double minX = std::min({s.x[0], s.x[1], s.x[2]});

@@ -1,7 +1,8 @@
 #pragma once
 // The pieces a binned item draws, in its pass' screen space (x, y in pixels, depth key): a chunk
-// of a command's triangles, or one box's faces that decide its answer. Made again in every tile
-// that rasterises the item; binning itself never transforms a triangle.
+// of a command's triangles (from its run's screen vertices, CpuScreenVertices), or one box's faces
+// that decide its answer. Gathered again in every tile that rasterises the item; binning itself
+// never transforms a triangle.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -27,7 +28,7 @@ struct CpuPieces {
 // whose coverage margin is `marginPx`): of a closed mesh drawn whole only the faces that decide it
 // (CpuCommand::winding), and none whose pixel box misses the window (nor any of a part whose
 // rectangle misses it).
-void chunkPieces(const CpuRecording& recording, const Mesh& mesh, const CpuMeshBounds& bounds,
+void chunkPieces(const CpuRun& run, const Mesh& mesh, const CpuMeshBounds& bounds,
                  const CpuCommand& c, const CpuItem& item, const PixelRect& window, double marginPx,
                  CpuPieces& out);
 

@@ -163,11 +163,23 @@ CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source s
   return c;
 }
 
-std::int8_t CpuRasterBackend::wholeMeshWinding(const MeshRange& range) const {
-  const SceneObject& o = scene_->objects[range.object];
+CpuCommand& CpuRasterBackend::recordRange(CpuCommand::Role role, const MeshRange& range) {
+  const std::uint32_t mesh = scene_->objects[range.object].mesh;
   const bool whole =
-      range.firstTriangle == 0 && range.triangleCount == scene_->meshes[o.mesh].triangleCount();
-  return whole ? meshBounds_[o.mesh].winding : std::int8_t{0};
+      range.firstTriangle == 0 && range.triangleCount == scene_->meshes[mesh].triangleCount();
+  if (whole) {
+    CpuCommand& c = record(role, CpuCommand::Source::Range, range.object);
+    c.first = 0, c.count = range.triangleCount;
+    c.winding = meshBounds_[mesh].winding;
+    return c;
+  }
+  // Part of a mesh: its triangles listed (draw order is over whole meshes).
+  CpuRecording& recording = open_->recording;
+  CpuCommand& c = record(role, CpuCommand::Source::Listed, range.object);
+  c.first = static_cast<std::uint32_t>(recording.listed.size()), c.count = range.triangleCount;
+  for (std::uint32_t t = 0; t < range.triangleCount; ++t)
+    recording.listed.push_back(range.firstTriangle + t);
+  return c;
 }
 
 QueryIndex CpuRasterBackend::issue(std::uint32_t count) {
@@ -181,9 +193,8 @@ QueryIndex CpuRasterBackend::queryRange(const MeshRange& range) {
   checkRange(range);
   const QueryIndex q = issue(1);
   if (range.triangleCount == 0) return q;  // no sample: fully visible
-  CpuCommand& c = record(CpuCommand::Role::Test, CpuCommand::Source::Range, range.object);
-  c.first = range.firstTriangle, c.count = range.triangleCount, c.query = q;
-  c.winding = wholeMeshWinding(range);
+  CpuCommand& c = recordRange(CpuCommand::Role::Test, range);
+  c.query = q;
   ++counters_.draws;
   counters_.trianglesDrawn += range.triangleCount;
   return q;
@@ -197,8 +208,8 @@ QueryIndex CpuRasterBackend::queryTriangles(const MeshRange& range) {
   checkRange(range);
   if (range.triangleCount == 0) return kNoQuery;
   const QueryIndex q = issue(range.triangleCount);
-  CpuCommand& c = record(CpuCommand::Role::Test, CpuCommand::Source::Range, range.object);
-  c.first = range.firstTriangle, c.count = range.triangleCount, c.query = q;
+  CpuCommand& c = recordRange(CpuCommand::Role::Test, range);
+  c.query = q;
   c.answerEach = true;
   ++counters_.draws;  // a batch is one draw
   counters_.trianglesDrawn += range.triangleCount;
@@ -239,9 +250,7 @@ QueryIndex CpuRasterBackend::queryBoxes(ObjectId object, std::span<const Oriente
 void CpuRasterBackend::writeRange(const MeshRange& range) {
   checkRange(range);
   if (range.triangleCount == 0) return;
-  CpuCommand& c = record(CpuCommand::Role::Write, CpuCommand::Source::Range, range.object);
-  c.first = range.firstTriangle, c.count = range.triangleCount;
-  c.winding = wholeMeshWinding(range);
+  recordRange(CpuCommand::Role::Write, range);
   ++counters_.draws;
   counters_.trianglesDrawn += range.triangleCount;
 }
@@ -306,6 +315,8 @@ void CpuRasterBackend::flush() {
       continues ? retained_.runs.front().first->bins.chains[retained_.runs.front().second].tileSize
                 : 0;
   tbb::task_arena* arena = threads_ > 1 ? arena_.get() : nullptr;
+  putInDrawOrder(recording, meshBounds_, orderScratch_);
+  run.vertices.assign(recording, meshBounds_);
   binRecording(recording, *scene_, meshBounds_, evaluation_.tileSize, continuedTileSize, arena,
                run.bins);
   answers_.resize(issued_, 1);
@@ -347,6 +358,7 @@ void CpuRasterBackend::flush() {
   } else {
     for (std::size_t u = 0; u < units_.size(); ++u) runUnit(u);
   }
+  answersInIssueOrder(recording, meshBounds_, answers_.data(), answerScratch_);
   CpuTileWork total;
   for (const CpuTileWork& w : work_) total += w;
   counters_.pixelsTested += total.raster.pixelsTested;

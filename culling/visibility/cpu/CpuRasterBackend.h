@@ -79,8 +79,8 @@ class CpuRasterBackend final : public VisibilityBackend {
   void checkListed(ObjectId object, std::span<const std::uint32_t> triangles) const;
   // A command of the open pass, with the object's matrix into its screen space.
   CpuCommand& record(CpuCommand::Role role, CpuCommand::Source source, ObjectId object);
-  // CpuCommand::winding of a draw of `range`.
-  [[nodiscard]] std::int8_t wholeMeshWinding(const MeshRange& range) const;
+  // A command drawing `range`: a Range of a whole mesh (with its winding), a part listed.
+  CpuCommand& recordRange(CpuCommand::Role role, const MeshRange& range);
   // Numbers `count` answers (1 until a test says otherwise).
   QueryIndex issue(std::uint32_t count);
   // Runs the open recording; its answers join those awaiting the next fetch.
@@ -125,6 +125,8 @@ class CpuRasterBackend final : public VisibilityBackend {
   tbb::enumerable_thread_specific<CpuTileState> scratch_;
   tbb::enumerable_thread_specific<CpuTileWork> work_;
   std::vector<std::shared_ptr<CpuRun>> spareRuns_;
+  CpuOrderScratch orderScratch_;
+  std::vector<std::uint8_t> answerScratch_;
   // Per chain of a flush: its id, the value it clears to, the store holding its tiles (-1: each
   // thread's scratch).
   struct ChainPlace {

@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "core/OrientedBox.h"
@@ -20,8 +22,10 @@ using ScreenMatrix = Eigen::Matrix<double, 3, 4>;
 
 struct CpuCommand {
   enum class Role : std::uint8_t { Test, Write };
-  // Range: triangles [first, first + count) of the mesh; Listed: count mesh triangles listed at
-  // CpuRecording::listed[first...]; Boxes: count boxes at CpuRecording::boxes[first...].
+  // Range: the whole mesh (first 0, count its triangles); Listed: count mesh triangles listed at
+  // CpuRecording::listed[first...]; Boxes: count boxes at CpuRecording::boxes[first...]. Once in
+  // draw order (putInDrawOrder) a command's triangles are positions in its mesh's draw order
+  // (CpuMeshBounds), and its answers are numbered in that order until answersInIssueOrder.
   enum class Source : std::uint8_t { Range, Listed, Boxes };
   Role role = Role::Test;
   Source source = Source::Range;
@@ -36,6 +40,7 @@ struct CpuCommand {
   std::uint32_t first = 0;
   std::uint32_t count = 0;
   QueryIndex query = 0;  // the (first) answer's index
+  std::uint32_t vertexSet = 0;  // Range and Listed: its CpuScreenVertices set (set at a run)
   ScreenMatrix toScreen = ScreenMatrix::Zero();
 };
 
@@ -55,12 +60,32 @@ struct CpuRecording {
   std::vector<CpuPass> passes;
   std::vector<CpuCommand> commands;
   std::vector<std::uint32_t> listed;
+  // In draw order: per entry of `listed`, its offset in its command as issued.
+  std::vector<std::uint32_t> listedOffset;
   std::vector<OrientedBox> boxes;
 
-  void clear() { passes.clear(), commands.clear(), listed.clear(), boxes.clear(); }
+  void clear() {
+    passes.clear(), commands.clear(), listed.clear(), listedOffset.clear(), boxes.clear();
+  }
   [[nodiscard]] bool empty() const { return passes.empty(); }
   // Sets each pass' endCommand (once every command is recorded).
   void close();
 };
+
+struct CpuMeshBounds;
+
+// Puts each Listed command's triangles in draw order: its entries become positions in its mesh's
+// draw order, ascending (listedOffset says where each was issued). `scratch` is reused.
+struct CpuOrderScratch {
+  std::vector<std::uint32_t> start;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted;
+};
+void putInDrawOrder(CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
+                    CpuOrderScratch& scratch);
+
+// Per-triangle answers (`answers`, indexed by query) renumbered from draw order back to the order
+// the triangles were issued in.
+void answersInIssueOrder(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
+                         std::uint8_t* answers, std::vector<std::uint8_t>& scratch);
 
 }  // namespace cdb

@@ -49,7 +49,7 @@ void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
   if (c.source == CpuCommand::Source::Boxes)
     boxPieces(recording, c, item.first, raster.conservative, pieces);
   else
-    chunkPieces(recording, scene.geometry.meshes[c.mesh], scene.bounds[c.mesh], c, item,
+    chunkPieces(run, scene.geometry.meshes[c.mesh], scene.bounds[c.mesh], c, item,
                 tileRect(depth), raster.marginPx, pieces);
 }
 
@@ -70,24 +70,22 @@ void writeItem(CpuDepthBuffer& depth, const CpuScene& scene, const CpuRun& run, 
 // A pending write drawn into the blocks of `blocks` (of those it has not been drawn in), prepared
 // first if no test needed it before.
 template <class Piece>
-void drawPrepared(std::vector<PreparedWrite<Piece>>& prepared, CpuDepthBuffer& depth,
+void drawPrepared(CpuPreparedPieces<Piece>& prepared, CpuDepthBuffer& depth,
                   const RasterPass& raster, const CpuPieces& pieces, CpuPendingWrite& p,
                   BlockMask blocks, CpuTileWork& work) {
   if (p.firstPrepared == CpuPendingWrite::kNotSetUp) {
-    const std::size_t at = prepared.size();
-    prepared.resize(at + pieces.count);
+    PreparedWrite<Piece>* room = prepared.room(pieces.count);
     std::size_t n;
     if constexpr (std::is_same_v<Piece, ScreenQuad>)
-      n = prepareWrites(depth, raster, {pieces.quads.data(), pieces.count}, prepared.data() + at);
+      n = prepareWrites(depth, raster, {pieces.quads.data(), pieces.count}, room);
     else
-      n = prepareWrites(depth, raster, {pieces.triangles.data(), pieces.count},
-                        prepared.data() + at);
-    prepared.resize(at + n);
-    p.firstPrepared = static_cast<std::uint32_t>(at);
+      n = prepareWrites(depth, raster, {pieces.triangles.data(), pieces.count}, room);
+    p.firstPrepared = static_cast<std::uint32_t>(prepared.used);
     p.preparedCount = static_cast<std::uint32_t>(n);
+    prepared.used += n;
     ++work.writesRasterised;
   }
-  writePrepared(depth, raster, {prepared.data() + p.firstPrepared, p.preparedCount},
+  writePrepared(depth, raster, {prepared.storage.data() + p.firstPrepared, p.preparedCount},
                 blocks & p.remaining, work.raster, p.object);
 }
 
@@ -105,6 +103,17 @@ void drawPending(CpuTileState& state, const CpuScene& scene, CpuPendingWrite& p,
   else
     drawPrepared(state.preparedTriangles, state.depth, raster, pieces, p, blocks, work);
   p.remaining &= ~blocks;
+}
+
+void drawAllPending(CpuTileState& state, const CpuScene& scene, CpuTileWork& work) {
+  for (CpuPendingWrite& p : state.pending) drawPending(state, scene, p, p.remaining, work);
+}
+
+// No write pending any more, nor their prepared pieces.
+void clearPending(CpuTileState& state) {
+  state.pending.clear();
+  state.preparedTriangles.used = 0;
+  state.preparedQuads.used = 0;
 }
 
 // Whether the pieces of an item answer one by one: the triangles of a batch (a box is one piece
@@ -161,9 +170,8 @@ void enterPass(CpuTileState& state, const CpuScene& scene, const RasterPass& ras
       const float nearest = raster.sign > 0 ? vLo : -vHi;
       behind = behind && nearest > raster.keyHi;
     }
-    if (!behind)
-      for (CpuPendingWrite& p : state.pending) drawPending(state, scene, p, p.remaining, work);
-    state.pending.clear();
+    if (!behind) drawAllPending(state, scene, work);
+    clearPending(state);
   }
   state.sign = raster.sign;
 }
@@ -185,9 +193,7 @@ void startTile(CpuTileState& state, const CpuChain& chain, std::uint32_t tile, f
   state.depth.place(chain.resolution, tx * blocks, ty * blocks, blocks, blocks,
                     chain.orderIndependent);
   state.depth.clear(clearValue);
-  state.pending.clear();
-  state.preparedTriangles.clear();
-  state.preparedQuads.clear();
+  clearPending(state);
   state.sign = 0.f;
   state.chain = chainId;
 }
@@ -213,8 +219,8 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       // A test looks at every pending write of its tile: a list this long (thousands of node boxes
       // in one tile at a low resolution) is drawn instead, which leaves the same depths.
       if (state.pending.size() == kMostPending) {
-        for (CpuPendingWrite& p : state.pending) drawPending(state, scene, p, p.remaining, work);
-        state.pending.clear();
+        drawAllPending(state, scene, work);
+        clearPending(state);
       }
       state.pending.push_back({blocks, item.kLo, item.kHi, item.object, &run, i});
       continue;
@@ -250,6 +256,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     for (CpuPendingWrite& p : state.pending)
       if (reads(p)) drawPending(state, scene, p, blocks, work);
     std::erase_if(state.pending, [](const CpuPendingWrite& p) { return p.remaining == 0; });
+    if (state.pending.empty()) clearPending(state);
     testPieces(state.depth, pieces, raster, item, visible, answers, work);
   }
 }

@@ -17,6 +17,7 @@
 // and testing every piece gives: stored depth is the nearest of what was written (in one pass'
 // order, so a write drawn later or in parts leaves the same), and a pending write left out can only
 // be behind the test wherever both have pixels.
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <span>
@@ -60,12 +61,25 @@ struct CpuPendingWrite {
   bool quads = false;
 };
 
+// Prepared pieces of a tile's pending writes: storage that only grows (a prepared write is set up
+// in place, so none is constructed twice), `used` of it in use.
+template <class Piece>
+struct CpuPreparedPieces {
+  std::vector<PreparedWrite<Piece>> storage;
+  std::size_t used = 0;
+  // Room for `count` more at storage[used ...].
+  PreparedWrite<Piece>* room(std::size_t count) {
+    if (storage.size() < used + count) storage.resize(std::max(used + count, 2 * storage.size()));
+    return storage.data() + used;
+  }
+};
+
 // A tile of a chain's depth buffer: the depths resolved so far and the writes still pending.
 struct CpuTileState {
   CpuDepthBuffer depth;
   std::vector<CpuPendingWrite> pending;
-  std::vector<PreparedWrite<ScreenTriangle>> preparedTriangles;
-  std::vector<PreparedWrite<ScreenQuad>> preparedQuads;
+  CpuPreparedPieces<ScreenTriangle> preparedTriangles;
+  CpuPreparedPieces<ScreenQuad> preparedQuads;
   float sign = 0.f;         // the key order of the pass of its last item (0: none yet)
   std::uint64_t chain = 0;  // which chain's tile it holds (0: none)
 };
