@@ -11,6 +11,7 @@
 
 #include "culling/visibility/cpu/CpuMeshBounds.h"
 #include "culling/visibility/cpu/CpuRasterBackend.h"
+#include "scenes/ProceduralMeshes.h"
 #include "tests/visibility/GlTestSupport.h"
 
 namespace cdb {
@@ -220,6 +221,19 @@ TEST(CpuRasterBackend, BatchAnswersFollowTheIssuedOrder) {
       if (cx > 0.15f) EXPECT_EQ(answers[alone[t]], 1) << "triangle " << t;
     }
   }
+}
+
+// The draw order is the Morton one where it makes chunks more compact (a grid listed row by row,
+// whose chunks are strips), the mesh's own where not (a torus listed ring by ring around its tube:
+// each chunk is already a band), and a permutation either way.
+TEST(CpuRasterBackend, DrawOrderKeepsTheMoreCompactChunks) {
+  const Mesh grid = gridMesh(0);
+  EXPECT_EQ(chosenDrawOrder(grid), drawOrderOf(grid));
+  const Mesh torus = makeTorus(0.5, 0.2, 20, 20);
+  std::vector<std::uint32_t> own(torus.triangleCount());
+  std::iota(own.begin(), own.end(), 0u);
+  EXPECT_EQ(chosenDrawOrder(torus), own);
+  EXPECT_NE(drawOrderOf(torus), own);
 }
 
 TEST(CpuRasterBackend, NamesItsInstructionSetAndThreads) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <unordered_map>
 
 #include "scenes/MeshMeasures.h"
@@ -49,6 +50,33 @@ std::vector<std::uint32_t> drawOrderOf(const Mesh& mesh) {
   return order;
 }
 
+namespace {
+
+// How compact the chunks of `order` are: the summed extents of their boxes (a chunk much smaller
+// than a tile touches more tiles as its rectangle's width plus height grows, from any direction).
+double chunkExtents(const Mesh& mesh, std::span<const std::uint32_t> order) {
+  double extents = 0.0;
+  for (std::size_t first = 0; first < order.size(); first += kChunkTriangles) {
+    Eigen::AlignedBox3f box;
+    const std::size_t end = std::min<std::size_t>(first + kChunkTriangles, order.size());
+    for (std::size_t p = first; p < end; ++p)
+      for (const std::uint32_t v : mesh.triangles[order[p]])
+        if (mesh.vertices[v].allFinite()) box.extend(mesh.vertices[v]);
+    if (box.isEmpty()) continue;
+    extents += box.sizes().cast<double>().sum();
+  }
+  return extents;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> chosenDrawOrder(const Mesh& mesh) {
+  std::vector<std::uint32_t> own(mesh.triangles.size());
+  std::iota(own.begin(), own.end(), 0u);
+  std::vector<std::uint32_t> morton = drawOrderOf(mesh);
+  return chunkExtents(mesh, morton) < chunkExtents(mesh, own) ? morton : own;
+}
+
 std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
   std::vector<CpuMeshBounds> all;
   all.reserve(scene.meshes.size());
@@ -57,7 +85,7 @@ std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
     const double volume = isClosedMesh(m) ? signedVolume(m) : 0.0;
     b.winding = volume > 0 ? 1 : volume < 0 ? -1 : 0;
     const std::size_t n = m.triangles.size();
-    b.order = drawOrderOf(m);
+    b.order = chosenDrawOrder(m);
     b.position.resize(n);
     for (std::size_t p = 0; p < n; ++p) b.position[b.order[p]] = static_cast<std::uint32_t>(p);
     b.triangles.reserve(n);

@@ -5,11 +5,13 @@
 // winding (see CpuCommand::winding).
 //
 // Within one command the order of its triangles changes nothing (a write keeps the nearest depth,
-// a test looks for any occluded sample, a batch answers per triangle), so the backend draws a
-// mesh's triangles in an order of its own: along a Morton curve through their centroids. A chunk
+// a test looks for any occluded sample, a batch answers per triangle), so the backend may draw a
+// mesh's triangles in an order of its own: along a Morton curve through their centroids, where
+// that makes its chunks more compact than the mesh's own order (summed chunk box extents). A chunk
 // is then a patch of the surface, not a strip across it (the Stanford dragon's file order makes
 // chunks of 64 triangles that span 70% of its length), so a chunk's rectangle is small, touches
-// one tile mostly, and its depth range is narrow.
+// one tile mostly, and its depth range is narrow. A generated torus, whose own order goes around
+// its tube ring by ring, keeps its order.
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
@@ -50,5 +52,8 @@ struct CpuMeshBounds {
 // The draw order of `mesh`'s triangles: by the Morton code of their centroids in the mesh's
 // bounding cube (10 bits an axis; non-finite centroids first), ties by triangle index.
 [[nodiscard]] std::vector<std::uint32_t> drawOrderOf(const Mesh& mesh);
+// The order the backend draws `mesh` in: drawOrderOf's, or the mesh's own where its chunks are at
+// least as compact.
+[[nodiscard]] std::vector<std::uint32_t> chosenDrawOrder(const Mesh& mesh);
 
 }  // namespace cdb
