@@ -52,23 +52,32 @@ std::string readWholeFile(const std::filesystem::path& file) {
 
 // Raw rasterisation is a property of what is drawn: a detector that draws nothing (a CPU peer,
 // the all_pairs reference) would run exactly as in conservative mode, and its rows would be
-// labelled with a mode that did not apply to them.
-void refuseRawWhereNothingIsDrawn(const ScenarioConfig& config, const RunOptions& options) {
+// labelled with a mode that did not apply to them. Named with --strategies it is refused; listed
+// by the config (whose reference rows are there for conservative runs) it is left out with a note.
+void leaveOutWhatDrawsNothingInRawMode(ScenarioConfig& config, const RunOptions& options) {
   const DetectorRegistry& registry = DetectorRegistry::builtin();
+  const std::string where = options.conservative ? std::string("--raw")
+                                                 : options.configPath.string() +
+                                                       ": culling.visibility.conservative: false";
+  std::vector<std::string> kept;
   for (const std::string& name : config.sweep.strategies) {
-    if (registry.usesBackend(name)) continue;
+    if (registry.usesBackend(name)) {
+      kept.push_back(name);
+      continue;
+    }
     const std::string what = registry.kind(name) == DetectorRegistry::Kind::CpuPeer
                                  ? "a CPU peer"
                                  : "a reference that culls nothing";
-    const std::string where = options.conservative ? std::string("--raw")
-                                                   : options.configPath.string() +
-                                                         ": culling.visibility.conservative: false";
-    const std::string fix = options.strategies
-                                ? "leave it out of --strategies"
-                                : "name the image-based strategies with --strategies";
-    throw InputError(where + ": " + name + " is " + what +
-                     " and draws nothing, so raw rasterisation does not apply to it; " + fix);
+    const std::string why =
+        name + " is " + what + " and draws nothing, so raw rasterisation does not apply to it";
+    if (options.strategies) throw InputError(where + ": " + why + "; leave it out of --strategies");
+    if (!options.quiet) std::cerr << "run: raw mode: " << why << ": left out\n";
   }
+  if (kept.empty())
+    throw InputError(where +
+                     ": no strategy of the run draws anything; name the image-based strategies "
+                     "with --strategies");
+  config.sweep.strategies = std::move(kept);
 }
 
 }  // namespace
@@ -130,7 +139,7 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
   config.sweep.strategies = std::move(runnable);
   if (config.sweep.strategies.empty())
     throw InputError("no strategy of the run runs on the " + visibility.backend + " backend");
-  if (!visibility.conservative) refuseRawWhereNothingIsDrawn(config, options);
+  if (!visibility.conservative) leaveOutWhatDrawsNothingInRawMode(config, options);
   for (int r : config.sweep.resolutions)
     if (r < 1 || r > 16384)
       throw InputError("resolution " + std::to_string(r) + ": expected 1..16384 pixels");

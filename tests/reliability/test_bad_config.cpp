@@ -76,18 +76,41 @@ TEST_F(BadConfig, UnknownStrategyInTheConfig) {
   expectCleanFailure(r, 2, out(), {"strategy.yaml", "nosuch", "cullide"});
 }
 
-// The config asks for raw mode and lists a CPU peer: the message names the config and the key,
-// and says how to run the image-based strategies alone.
-TEST_F(BadConfig, RawModeInTheConfigWithACpuPeer) {
-  std::string text = env3With("^  strategies: .*$", "  strategies: [cullide, bullet]");
+// The config asks for raw mode and lists only what draws nothing: the message names the config
+// and the key, and says how to run the image-based strategies.
+TEST_F(BadConfig, RawModeInTheConfigWithOnlyACpuPeer) {
+  std::string text = env3With("^  strategies: .*$", "  strategies: [bullet, all_pairs]");
   const std::regex mode("conservative: true");
   ASSERT_TRUE(std::regex_search(text, mode));
   text = std::regex_replace(text, mode, "conservative: false");
   const auto config = dir.write("raw.yaml", text);
   const auto r = runCdbench({"run", config.string(), "--frames", "2", "--quiet", "--out", out().string()});
   expectCleanFailure(r, 2, out(),
-                     {"raw.yaml", "culling.visibility.conservative: false", "bullet",
+                     {"raw.yaml", "culling.visibility.conservative: false", "draws anything",
                       "name the image-based strategies with --strategies"});
+}
+
+// --raw on a config that lists reference rows beside image-based strategies (as the shipped ones
+// do): the reference rows are left out with a note, the rest runs raw.
+TEST_F(BadConfig, RawModeLeavesOutTheConfigsReferenceRows) {
+  const auto config =
+      dir.write("raw.yaml", env3With("^  strategies: .*$", "  strategies: [cullide, bullet]"));
+  const auto r = runCdbench({"run", config.string(), "--raw", "--frames", "2", "--frame-stride",
+                             "2", "--objects", "50", "--resolutions", "64", "--repeats", "1",
+                             "--no-truth", "--out", out().string()});
+  ASSERT_EQ(r.exitCode, 0) << r.stdErr;
+  EXPECT_NE(r.stdErr.find("run: raw mode: bullet is a CPU peer and draws nothing"),
+            std::string::npos)
+      << r.stdErr;
+  std::ifstream frames(out() / "frames.csv");
+  std::string header, row;
+  std::getline(frames, header);
+  int rows = 0;
+  while (std::getline(frames, row)) {
+    EXPECT_EQ(row.find("bullet"), std::string::npos) << row;
+    rows += row.find("cullide") != std::string::npos;
+  }
+  EXPECT_GT(rows, 0);
 }
 
 // Within the config's limit but above what this GL can render at: refused before any frame.
