@@ -33,6 +33,7 @@ RunIdentity CellStore::readIdentity(const std::filesystem::path& dir) {
     id.configPath = j.value("config", "");
     id.configText = j.value("config_text", "");
     id.plan = j.value("plan", std::vector<std::string>{});
+    id.builds = j.value("builds", std::vector<std::string>{});
     return id;
   } catch (const std::exception& e) {
     throw InputError((dir / kIdentityFile).string() + ": malformed (" + e.what() + ")");
@@ -54,6 +55,19 @@ CellStore::CellStore(std::filesystem::path dir, RunIdentity identity)
     throw InputError(dir_.string() + ": holds " + std::to_string(finished.size()) +
                      " finished cells of another run (" + old.environment + " from " +
                      old.configPath + ", or other frames/seed/mode): use another --out");
+  // The builds of the kept cells, then this one's.
+  std::vector<std::string> builds = old.builds;
+  for (const std::string& b : identity_.builds)
+    if (std::find(builds.begin(), builds.end(), b) == builds.end()) builds.push_back(b);
+  keptBuilds_ = old.builds;
+  identity_.builds = std::move(builds);
+}
+
+std::vector<std::string> CellStore::otherBuilds(const std::string& build) const {
+  std::vector<std::string> other;
+  for (const std::string& b : keptBuilds_)
+    if (b != build) other.push_back(b);
+  return other;
 }
 
 void CellStore::claim() const {
@@ -61,7 +75,8 @@ void CellStore::claim() const {
                             {"identity", hex(identity_.hash)},
                             {"config", identity_.configPath},
                             {"config_text", identity_.configText},
-                            {"plan", identity_.plan}};
+                            {"plan", identity_.plan},
+                            {"builds", identity_.builds}};
   writeFileAtomically(dir_ / kIdentityFile, j.dump(2) + "\n");
 }
 

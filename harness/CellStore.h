@@ -19,6 +19,9 @@ struct RunIdentity {
   std::string configPath;
   std::string configText;
   std::vector<std::string> plan;  // keys of every cell of the whole run (all shards), in order
+  // The builds (buildCommit()) that measured the folder's cells, oldest first: not part of the
+  // identity (a rebuild changes no answer), but a cell's times are its build's.
+  std::vector<std::string> builds;
 };
 
 class CellStore {
@@ -28,6 +31,10 @@ class CellStore {
   // InputError when DIR holds finished cells of another identity, RunError when DIR cannot be
   // created.
   CellStore(std::filesystem::path dir, RunIdentity identity);
+
+  // The builds other than `build` that measured finished cells kept in the folder (empty when
+  // there are none, or the folder predates the record).
+  [[nodiscard]] std::vector<std::string> otherBuilds(const std::string& build) const;
 
   // (Re)writes DIR/run.json: from here on the folder holds this run. Throws RunError.
   void claim() const;
@@ -54,6 +61,7 @@ class CellStore {
   [[nodiscard]] std::filesystem::path cellPath(const Cell& cell) const;
   std::filesystem::path dir_;
   RunIdentity identity_;
+  std::vector<std::string> keptBuilds_;  // the builds run.json named for the kept cells
 };
 
 }  // namespace cdb

@@ -18,6 +18,7 @@
 #include "harness/AtomicFile.h"
 #include "harness/CellFrames.h"
 #include "harness/CellMeasurement.h"
+#include "harness/BuildCommit.h"
 #include "harness/CellStore.h"
 #include "harness/InterruptFlag.h"
 #include "harness/ProgressBar.h"
@@ -208,7 +209,7 @@ RunSummary runScenario(const RunOptions& options) {
 
   const std::vector<Cell> plan = planCells(config);
   RunIdentity identity{config.environment, identityHash(config, options, configText),
-                       options.configPath.string(), configText, {}};
+                       options.configPath.string(), configText, {}, {std::string(buildCommit())}};
   for (const auto& c : plan) identity.plan.push_back(c.key());
 
   BackendResources resources(parseGlPlatform(options.glPlatform));
@@ -233,6 +234,7 @@ RunSummary runScenario(const RunOptions& options) {
       todo.push_back(c);
   }
   store.checkFinished(plan);
+  if (summary.cellsSkipped > 0) summary.resumedFromOtherBuilds = store.otherBuilds(std::string(buildCommit()));
 
   installInterruptHandlers();
   CellFrames frames(config, options, store, assetSearchPath(options.assetDirs), *backend,

@@ -13,6 +13,9 @@ namespace cdb {
 struct RunSummary {
   std::size_t cellsRun = 0;      // measured by this invocation
   std::size_t cellsSkipped = 0;  // already finished (resumed)
+  // When cells were resumed: the other builds that measured the folder's kept cells (their times
+  // are those builds').
+  std::vector<std::string> resumedFromOtherBuilds;
   std::size_t frameRows = 0;     // rows of frames.csv, 0 while the run is incomplete
   bool complete = false;         // every cell of the whole run is on disk and frames.csv written
   std::uint64_t falseNegatives = 0;

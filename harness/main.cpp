@@ -11,6 +11,7 @@
 #include "core/Errors.h"
 #include "culling/DetectorRegistry.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
+#include "harness/BuildCommit.h"
 #include "harness/FrameCsv.h"
 #include "harness/MergeRuns.h"
 #include "harness/RegressionCheck.h"
@@ -277,6 +278,16 @@ int main(int argc, char** argv) {
       std::cout.flush();
     }
     if (!run.quiet) std::fprintf(stderr, "time: %s\n", summary.time.summaryLine().c_str());
+    if (!summary.resumedFromOtherBuilds.empty()) {
+      std::string builds;
+      for (const auto& b : summary.resumedFromOtherBuilds) builds += (builds.empty() ? "" : ", ") + b;
+      std::fprintf(stderr,
+                   "run: note: %zu resumed cells of %s were kept from a run of another build (%s), "
+                   "not this one (%s): their times are that build's; delete %s/cells to measure "
+                   "them again\n",
+                   summary.cellsSkipped, run.outDir.c_str(), builds.c_str(),
+                   std::string(cdb::buildCommit()).c_str(), run.outDir.c_str());
+    }
     if (summary.complete)
       std::fprintf(stderr, "wrote %zu frame rows to %s (%zu cells measured, %zu resumed; false negatives: %llu)\n",
                    summary.frameRows, run.outDir.c_str(), summary.cellsRun, summary.cellsSkipped,

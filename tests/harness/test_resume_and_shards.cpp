@@ -164,6 +164,33 @@ TEST(Resume, AFolderWithoutFinishedCellsNeverBlocksANewRun) {
   EXPECT_EQ(nlohmann::json::parse(identity)["environment"], "env3");
 }
 
+// Cells kept from a run of another build are resumed (a rebuild changes no answer) with a note
+// naming that build, since their times are its; run.json keeps every build that measured cells.
+TEST(Resume, CellsOfAnotherBuildAreNamedWhenResumed) {
+  const auto out = freshDir("otherbuild");
+  const auto first = cdb::test::runShellCommand(smallRunCommand(out));
+  ASSERT_EQ(first.exitCode, 0) << first.output;
+  EXPECT_EQ(first.output.find("another build"), std::string::npos) << first.output;
+  auto identity = nlohmann::json::parse(std::ifstream(out / "run.json"));
+  ASSERT_EQ(identity["builds"].size(), 1u);
+  const std::string thisBuild = identity["builds"][0];
+  // The same build again: resumed without a note.
+  const auto same = cdb::test::runShellCommand(smallRunCommand(out));
+  ASSERT_EQ(same.exitCode, 0) << same.output;
+  EXPECT_NE(same.output.find("2 resumed"), std::string::npos) << same.output;
+  EXPECT_EQ(same.output.find("another build"), std::string::npos) << same.output;
+  // As if an older build had measured them.
+  identity["builds"] = {"0123abc"};
+  std::ofstream(out / "run.json", std::ios::trunc) << identity.dump(2);
+  const auto other = cdb::test::runShellCommand(smallRunCommand(out));
+  ASSERT_EQ(other.exitCode, 0) << other.output;
+  for (const std::string& part : {std::string("2 resumed cells"), std::string("another build (0123abc)"),
+                                  thisBuild, "delete " + out.string() + "/cells"})
+    EXPECT_NE(other.output.find(part), std::string::npos) << part << " not in: " << other.output;
+  identity = nlohmann::json::parse(std::ifstream(out / "run.json"));
+  EXPECT_EQ(identity["builds"], nlohmann::json::array({"0123abc", thisBuild}));
+}
+
 // A damaged cell stops the resumed run before it measures anything, named with its line and with
 // how to measure it again; doing what the message says finishes the run.
 TEST(Resume, ADamagedCellIsNamedWithItsLineAndHowToMeasureItAgain) {
