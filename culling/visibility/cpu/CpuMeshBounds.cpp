@@ -39,8 +39,8 @@ std::vector<std::uint32_t> drawOrderOf(const Mesh& mesh) {
     if (!centroid.allFinite()) continue;
     std::uint32_t cell[3];
     for (int a = 0; a < 3; ++a)
-      cell[a] = static_cast<std::uint32_t>(
-          std::clamp((centroid[a] - box.min()[a]) * scale, 0.f, 1023.f));
+      cell[a] =
+          static_cast<std::uint32_t>(std::clamp((centroid[a] - box.min()[a]) * scale, 0.f, 1023.f));
     code[t] = spreadBits(cell[0]) | spreadBits(cell[1]) << 1 | spreadBits(cell[2]) << 2;
   }
   std::vector<std::uint32_t> order(n);

@@ -38,15 +38,15 @@ void putInDrawOrder(CpuRecording& recording, std::span<const CpuMeshBounds> boun
       for (std::uint32_t k = 0; k < c.count; ++k) sorted.emplace_back(position[listed[k]], k);
       std::sort(sorted.begin(), sorted.end());
     }
-    for (std::uint32_t k = 0; k < c.count; ++k) listed[k] = sorted[k].first, offset[k] = sorted[k].second;
+    for (std::uint32_t k = 0; k < c.count; ++k)
+      listed[k] = sorted[k].first, offset[k] = sorted[k].second;
   }
 }
 
 void answersInIssueOrder(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
                          std::uint8_t* answers, std::vector<std::uint8_t>& scratch) {
   for (const CpuCommand& c : recording.commands) {
-    if (c.role != CpuCommand::Role::Test || !c.answerEach ||
-        c.source == CpuCommand::Source::Boxes)
+    if (c.role != CpuCommand::Role::Test || !c.answerEach || c.source == CpuCommand::Source::Boxes)
       continue;
     std::uint8_t* mine = answers + c.query;
     scratch.assign(mine, mine + c.count);

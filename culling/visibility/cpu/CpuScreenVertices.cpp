@@ -50,7 +50,8 @@ void CpuScreenVertices::assign(CpuRecording& recording, std::span<const CpuMeshB
     states_ = std::make_unique<std::atomic<std::uint8_t>[]>(chunks);
     stateCapacity_ = chunks;
   }
-  for (std::size_t i = 0; i < chunks; ++i) states_[i].store(kNotTransformed, std::memory_order_relaxed);
+  for (std::size_t i = 0; i < chunks; ++i)
+    states_[i].store(kNotTransformed, std::memory_order_relaxed);
 }
 
 const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const Mesh& mesh,
@@ -67,12 +68,11 @@ const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const Mesh&
     const std::uint32_t begin = bounds.chunkVertexStart[chunk];
     const std::uint32_t end = bounds.chunkVertexStart[chunk + 1];
     for (std::uint32_t i = begin; i < end; ++i) {
-      const Eigen::Vector3d p = c.toScreen.leftCols<3>() *
-                                    mesh.vertices[bounds.chunkVertices[i]].cast<double>() +
-                                c.toScreen.col(3);
+      const Eigen::Vector3d p =
+          c.toScreen.leftCols<3>() * mesh.vertices[bounds.chunkVertices[i]].cast<double>() +
+          c.toScreen.col(3);
       out[i - begin] = {p.x(), p.y(), p.z()};
     }
-    transformed_.fetch_add(end - begin, std::memory_order_relaxed);
     state.store(kTransformed, std::memory_order_release);
     state.notify_all();
     return out;

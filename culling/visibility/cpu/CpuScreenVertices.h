@@ -30,10 +30,6 @@ class CpuScreenVertices {
   [[nodiscard]] const CpuScreenVertex* chunk(const CpuCommand& c, const Mesh& mesh,
                                              const CpuMeshBounds& bounds,
                                              std::uint32_t chunk) const;
-  // How many vertices were transformed (for tests: each chunk of a set once).
-  [[nodiscard]] std::uint64_t transformed() const {
-    return transformed_.load(std::memory_order_relaxed);
-  }
 
  private:
   struct Set {
@@ -45,7 +41,6 @@ class CpuScreenVertices {
   mutable std::vector<CpuScreenVertex> positions_;
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> states_;
   std::size_t stateCapacity_ = 0;
-  mutable std::atomic<std::uint64_t> transformed_{0};
 };
 
 }  // namespace cdb
