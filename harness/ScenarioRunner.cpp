@@ -16,9 +16,9 @@
 #include "culling/visibility/BackendResources.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/AtomicFile.h"
+#include "harness/BuildCommit.h"
 #include "harness/CellFrames.h"
 #include "harness/CellMeasurement.h"
-#include "harness/BuildCommit.h"
 #include "harness/CellStore.h"
 #include "harness/InterruptFlag.h"
 #include "harness/ProgressBar.h"
@@ -51,6 +51,28 @@ std::string readWholeFile(const std::filesystem::path& file) {
   return ss.str();
 }
 
+// Strategies of the run that cannot run as asked: whyNot(name) says why (empty: it runs). One
+// named with --strategies is refused (refusal(why) is the message); one only the config lists is
+// left out with a note ("run: <notePrefix><why>: left out"). When none is left, the run is refused
+// with `noneLeft`.
+template <class WhyNot, class Refusal>
+void leaveOutOrRefuse(ScenarioConfig& config, const RunOptions& options, const WhyNot& whyNot,
+                      const Refusal& refusal, const std::string& noneLeft,
+                      const std::string& notePrefix) {
+  std::vector<std::string> kept;
+  for (const std::string& name : config.sweep.strategies) {
+    const std::string why = whyNot(name);
+    if (why.empty()) {
+      kept.push_back(name);
+      continue;
+    }
+    if (options.strategies) throw InputError(refusal(why));
+    if (!options.quiet) std::cerr << "run: " << notePrefix << why << ": left out\n";
+  }
+  if (kept.empty()) throw InputError(noneLeft);
+  config.sweep.strategies = std::move(kept);
+}
+
 // Raw rasterisation is a property of what is drawn: a detector that draws nothing (a CPU peer,
 // the all_pairs reference) would run exactly as in conservative mode, and its rows would be
 // labelled with a mode that did not apply to them. Named with --strategies it is refused; listed
@@ -60,25 +82,20 @@ void leaveOutWhatDrawsNothingInRawMode(ScenarioConfig& config, const RunOptions&
   const std::string where = options.conservative ? std::string("--raw")
                                                  : options.configPath.string() +
                                                        ": culling.visibility.conservative: false";
-  std::vector<std::string> kept;
-  for (const std::string& name : config.sweep.strategies) {
-    if (registry.usesBackend(name)) {
-      kept.push_back(name);
-      continue;
-    }
-    const std::string what = registry.kind(name) == DetectorRegistry::Kind::CpuPeer
-                                 ? "a CPU peer"
-                                 : "a reference that culls nothing";
-    const std::string why =
-        name + " is " + what + " and draws nothing, so raw rasterisation does not apply to it";
-    if (options.strategies) throw InputError(where + ": " + why + "; leave it out of --strategies");
-    if (!options.quiet) std::cerr << "run: raw mode: " << why << ": left out\n";
-  }
-  if (kept.empty())
-    throw InputError(where +
-                     ": no strategy of the run draws anything; name the image-based strategies "
-                     "with --strategies");
-  config.sweep.strategies = std::move(kept);
+  leaveOutOrRefuse(
+      config, options,
+      [&](const std::string& name) -> std::string {
+        if (registry.usesBackend(name)) return {};
+        const std::string what = registry.kind(name) == DetectorRegistry::Kind::CpuPeer
+                                     ? "a CPU peer"
+                                     : "a reference that culls nothing";
+        return name + " is " + what +
+               " and draws nothing, so raw rasterisation does not apply to it";
+      },
+      [&](const std::string& why) { return where + ": " + why + "; leave it out of --strategies"; },
+      where + ": no strategy of the run draws anything; name the image-based strategies with "
+              "--strategies",
+      "raw mode: ");
 }
 
 }  // namespace
@@ -126,20 +143,15 @@ ScenarioConfig effectiveConfig(const RunOptions& options) {
   }
   // A strategy of order-independent passes on a backend without them: refused when asked for by
   // name, left out of the config's list with a note.
-  std::vector<std::string> runnable;
-  for (const std::string& name : config.sweep.strategies) {
-    if (DetectorRegistry::builtin().runsOn(name, visibility.backend)) {
-      runnable.push_back(name);
-      continue;
-    }
-    const std::string why = name + " needs order-independent passes, which the " +
-                            visibility.backend + " backend does not offer";
-    if (options.strategies) throw InputError("--strategies: " + why);
-    if (!options.quiet) std::cerr << "run: " << why << ": left out\n";
-  }
-  config.sweep.strategies = std::move(runnable);
-  if (config.sweep.strategies.empty())
-    throw InputError("no strategy of the run runs on the " + visibility.backend + " backend");
+  leaveOutOrRefuse(
+      config, options,
+      [&](const std::string& name) -> std::string {
+        if (DetectorRegistry::builtin().runsOn(name, visibility.backend)) return {};
+        return name + " needs order-independent passes, which the " + visibility.backend +
+               " backend does not offer";
+      },
+      [](const std::string& why) { return "--strategies: " + why; },
+      "no strategy of the run runs on the " + visibility.backend + " backend", "");
   if (!visibility.conservative) leaveOutWhatDrawsNothingInRawMode(config, options);
   for (int r : config.sweep.resolutions)
     if (r < 1 || r > 16384)
@@ -234,7 +246,8 @@ RunSummary runScenario(const RunOptions& options) {
       todo.push_back(c);
   }
   store.checkFinished(plan);
-  if (summary.cellsSkipped > 0) summary.resumedFromOtherBuilds = store.otherBuilds(std::string(buildCommit()));
+  if (summary.cellsSkipped > 0)
+    summary.resumedFromOtherBuilds = store.otherBuilds(std::string(buildCommit()));
 
   installInterruptHandlers();
   CellFrames frames(config, options, store, assetSearchPath(options.assetDirs), *backend,

@@ -113,6 +113,30 @@ TEST_F(BadConfig, RawModeLeavesOutTheConfigsReferenceRows) {
   EXPECT_GT(rows, 0);
 }
 
+// A strategy of order-independent passes on a backend without them (gl-queries): left out of the
+// config's list with a note, refused when named with --strategies.
+TEST_F(BadConfig, OrderIndependentStrategyOnABackendWithoutIt) {
+  const auto config =
+      dir.write("oi.yaml", env3With("^  strategies: .*$", "  strategies: [cullide, cullide_oi]"));
+  const std::vector<std::string> small = {"--visibility", "gl-queries", "--frames", "2",
+                                          "--frame-stride", "2", "--objects", "50",
+                                          "--resolutions", "64", "--repeats", "1", "--no-truth"};
+  std::vector<std::string> args = {"run", config.string(), "--out", out().string()};
+  args.insert(args.end(), small.begin(), small.end());
+  const auto r = runCdbench(args);
+  ASSERT_EQ(r.exitCode, 0) << r.stdErr;
+  EXPECT_NE(r.stdErr.find("run: cullide_oi needs order-independent passes, which the gl-queries "
+                          "backend does not offer: left out"),
+            std::string::npos)
+      << r.stdErr;
+
+  const auto named = dir.path() / "named";
+  args = {"run", config.string(), "--strategies", "cullide_oi", "--out", named.string()};
+  args.insert(args.end(), small.begin(), small.end());
+  expectCleanFailure(runCdbench(args), 2, named,
+                     {"--strategies: cullide_oi needs order-independent passes", "gl-queries"});
+}
+
 // Within the config's limit but above what this GL can render at: refused before any frame.
 TEST_F(BadConfig, ResolutionAboveTheGlMaximum) {
   int glMax = 0;
