@@ -11,8 +11,8 @@
 // plainly (plain: every write rasterised, every test tested, one tile), at 1 and 2 threads: what
 // the tile size and the threads change, with the tile counters.
 //
-// gl_profile/env3/<strategy>/<backend>/res:800/manual_time: the same cull on a GL backend with
-// every draw timed on the GPU (VisibilityOptions::timeGpu; the queries add a little to the time),
+// gl_profile/env3/<strategy>/<backend>/res:<800|64>[/raw]/manual_time: the same cull on a GL
+// backend (conservative at 800 and 64 px, raw at 800) with every draw timed on the GPU (VisibilityOptions::timeGpu; the queries add a little to the time),
 // for cullide, cullide_oi and ours: where a frame's time goes. Counters per frame: draws, fetches
 // (read-backs), fetch_wait_ms (the CPU waiting for answers: the GPU finishing what was issued, then
 // the copy), gpu_draw_ms (the GPU's time in the draws) and cpu_ms (the rest: the strategy and the
@@ -25,6 +25,7 @@
 // like the previous one does.
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "bench/BenchmarkSuite.h"
 #include "culling/exact/ExactPhase.h"
@@ -43,9 +44,10 @@ struct CpuSetting {
   int threads = 1;
 };
 
-// A GL backend with its draws timed on the GPU (gl_profile/...).
+// A GL backend with its draws timed on the GPU (gl_profile/...), conservative or raw.
 struct GlProfiling {
   bool timeGpu = false;
+  bool raw = false;
 };
 
 void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
@@ -67,6 +69,7 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
   if (profiling.timeGpu) {
     VisibilityOptions options = visibilityOptionsOf(recorded.config.culling);
     options.timeGpu = true;
+    if (profiling.raw) options.conservative = false;
     backend->setOptions(options);
   }
   ExactPhase exact(recorded.scene);
@@ -157,17 +160,20 @@ void registerCullBenchmarks(RecordedFrames& frames) {
                              })
             ->UseManualTime();
       }
-  // Where a GL backend's time goes (env3, 800 px).
+  // Where a GL backend's time goes (env3): at 800 px, conservative and raw (what the conservative
+  // stage costs), and at 64 px (what is left when there are hardly any pixels).
   for (const std::string& backend : frames.backends()) {
     if (backend == VisibilityBackendRegistry::kDefault) continue;
     for (const std::string strategy : {"cullide", "cullide_oi", "ours"}) {
       if (!DetectorRegistry::builtin().runsOn(strategy, backend)) continue;
-      registerMilliseconds(cellName("gl_profile", "env3", strategy, backend, 800),
-                           [&frames, strategy, backend](benchmark::State& state) {
-                             cullMeasuredFrame(state, frames, "env3", strategy, backend, 800, {},
-                                               GlProfiling{true});
-                           })
-          ->UseManualTime();
+      for (const auto& [resolution, raw] : {std::pair{800, false}, {800, true}, {64, false}})
+        registerMilliseconds(cellName("gl_profile", "env3", strategy, backend, resolution) +
+                                 (raw ? "/raw" : ""),
+                             [&frames, strategy, backend, resolution, raw](benchmark::State& state) {
+                               cullMeasuredFrame(state, frames, "env3", strategy, backend,
+                                                 resolution, {}, GlProfiling{true, raw});
+                             })
+            ->UseManualTime();
     }
   }
 }
