@@ -106,6 +106,27 @@ TEST(MicroBenchmarks, CheapSelectionWritesJsonWithCounters) {
   EXPECT_GT(bvh["levels"].get<double>(), 1.0);
 }
 
+// all_pairs draws nothing: its culling (a sweep) takes microseconds, so its cull benchmark is
+// timed with the exact phase, as the CPU peers are; timed on the sweep alone it would iterate for
+// minutes to fill the minimum time (hence the timeout).
+TEST(MicroBenchmarks, WhatDrawsNothingIsTimedWhole) {
+  const auto out = scratchFile("all_pairs.json");
+  const auto r = cdb::test::runShellCommand(
+      "timeout 120 " + std::string(CDBENCH_BINARY_DIR) +
+      "/cdbench_bench --objects env3=60 --frame env3=30 --benchmark_min_time=0.05 "
+      "--benchmark_filter='^cull/env3/all_pairs/-/res:256/manual_time$' --benchmark_out=" +
+      out.string() + " --benchmark_out_format=json 2>&1");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream file(out);
+  ASSERT_TRUE(file) << r.output;
+  const nlohmann::json json = nlohmann::json::parse(file);
+  ASSERT_EQ(json["benchmarks"].size(), 1u) << json.dump(1);
+  const auto& b = json["benchmarks"][0];
+  const double exactMs = b["exact_ms"].get<double>();
+  EXPECT_GT(exactMs, 0.0) << b.dump();
+  EXPECT_GE(b["real_time"].get<double>(), exactMs) << b.dump();
+}
+
 TEST(MicroBenchmarks, BadOverrideExitsTwo) {
   const auto r = runBench("--objects env9=20 --benchmark_filter=none");
   EXPECT_EQ(r.exitCode, 2) << r.output;
