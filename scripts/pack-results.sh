@@ -41,10 +41,16 @@ for env in "${envs[@]}"; do
   mkdir -p "$dest/$env"
   # -n: no name or time stamp in the header, so the same frames give the same bytes.
   gzip -9 -n -c "$run/$env/frames.csv" > "$dest/$env/frames.csv.gz"
+  # No committed file over 1 MiB: a larger frames.csv.gz is cut into parts frames.csv.gz.00, .01, ...
+  # that put together give it back (cat frames.csv.gz.?? > frames.csv.gz); the report reads them so.
+  if (($(stat -c %s "$dest/$env/frames.csv.gz") > 1048576)); then
+    split -b 1000000 -d -a 2 "$dest/$env/frames.csv.gz" "$dest/$env/frames.csv.gz."
+    rm "$dest/$env/frames.csv.gz"
+  fi
   cp "$run/$env/meta.json" "$dest/$env/"
   for f in summary.md summary.csv; do [[ ! -f $run/$env/$f ]] || cp "$run/$env/$f" "$dest/$env/"; done
   find "$run/$env" -maxdepth 1 \( -name 'shard-*.json' -o -name 'snapshot*.png' -o -name 'snapshot*.json' \) \
     -exec cp {} "$dest/$env/" \;
-  echo "pack-results: $env: $(wc -l < "$run/$env/frames.csv") lines, frames.csv.gz $(du -k "$dest/$env/frames.csv.gz" | cut -f1) KiB"
+  echo "pack-results: $env: $(wc -l < "$run/$env/frames.csv") lines, frames.csv.gz $(cat "$dest/$env"/frames.csv.gz* | wc -c | awk '{printf "%d", $1 / 1024}') KiB"
 done
 echo "pack-results: wrote $dest ($(du -sk "$dest" | cut -f1) KiB)"

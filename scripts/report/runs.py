@@ -158,9 +158,15 @@ def read_environment(result_dir: Path, name: str, backend: str = "", folder: Pat
 
 def frames_file(folder: Path) -> Path:
     """The folder's frames.csv, or its gzip-compressed frames.csv.gz when only that is there (how committed
-    results keep it); frames.csv when neither exists."""
-    plain, packed = folder / "frames.csv", folder / "frames.csv.gz"
-    return packed if packed.exists() and not plain.exists() else plain
+    results keep it), or the first of the parts frames.csv.gz.00, .01, ... of one over 1 MiB; frames.csv
+    when none exists."""
+    plain = folder / "frames.csv"
+    if plain.exists():
+        return plain
+    for packed in (folder / "frames.csv.gz", folder / "frames.csv.gz.00"):
+        if packed.exists():
+            return packed
+    return plain
 
 
 def _progress(folder):
@@ -179,7 +185,8 @@ def _progress(folder):
 def is_run_folder(folder: Path):
     """Whether `folder` is one `cdbench run --out` folder (its frames, meta.json or the run.json of a run
     still going) rather than a folder of environments or backends."""
-    return any((folder / f).is_file() for f in ("frames.csv", "frames.csv.gz", "tables.csv", "meta.json", "run.json"))
+    return any((folder / f).is_file() for f in ("frames.csv", "frames.csv.gz", "frames.csv.gz.00", "tables.csv", "meta.json",
+                                                 "run.json"))
 
 
 def run_environment(folder: Path):

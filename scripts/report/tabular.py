@@ -2,6 +2,7 @@
 
 import csv
 import gzip
+import io
 import math
 from pathlib import Path
 
@@ -71,7 +72,15 @@ def _parse_time(path, line, name, text):
 
 
 def _open_text(path: Path):
-    """`path` for reading as UTF-8 CSV text, decompressed when its name ends in .gz."""
-    if Path(path).suffix == ".gz":
+    """`path` for reading as UTF-8 CSV text, decompressed when its name ends in .gz; NAME.gz.00 is the
+    first of the parts NAME.gz.00, NAME.gz.01, ... that scripts/pack-results.sh cuts a file over 1 MiB
+    into, read as the file they make together."""
+    path = Path(path)
+    if path.name.endswith(".gz.00"):
+        stem = path.name[: -len("00")]
+        parts = sorted(p for p in path.parent.glob(stem + "*") if p.name[len(stem):].isdigit())
+        whole = io.BytesIO(b"".join(p.read_bytes() for p in parts))
+        return gzip.open(whole, "rt", newline="", encoding="utf-8")
+    if path.suffix == ".gz":
         return gzip.open(path, "rt", newline="", encoding="utf-8")
     return open(path, newline="", encoding="utf-8")

@@ -492,6 +492,21 @@ class ReportOnCompressedFrames(InFreshResultDir):
         self.assertEqual((self.dir / "env1" / "comparison.csv").read_text(), expected)
         self.assertNotIn("frames.csv is missing", (self.dir / "REPORT.md").read_text())
 
+    def test_the_same_tables_from_frames_csv_gz_in_parts(self):
+        """A frames.csv.gz over 1 MiB is committed cut into parts (scripts/pack-results.sh)."""
+        write_run(self.dir / "env1", "env1", env1_rows())
+        self.assertEqual(run_report(self.dir).returncode, 0)
+        expected = (self.dir / "env1" / "comparison.csv").read_text()
+        compress_frames(self.dir / "env1")
+        packed = (self.dir / "env1" / "frames.csv.gz").read_bytes()
+        cut = [0, len(packed) // 3, 2 * len(packed) // 3, len(packed)]
+        for i in range(3):
+            (self.dir / "env1" / f"frames.csv.gz.{i:02d}").write_bytes(packed[cut[i]:cut[i + 1]])
+        (self.dir / "env1" / "frames.csv.gz").unlink()
+        result = run_report(self.dir)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual((self.dir / "env1" / "comparison.csv").read_text(), expected)
+
     def test_frames_csv_wins_over_a_stale_frames_csv_gz(self):
         write_run(self.dir / "env3", "env3", env3_rows())
         (self.dir / "env3" / "frames.csv.gz").write_bytes(gzip.compress(b"not,a,frames,file\n"))
