@@ -12,8 +12,9 @@
 // the tile size and the threads change, with the tile counters.
 //
 // gl_profile/env3/<strategy>/<backend>/res:<800|64>[/raw]/manual_time: the same cull on a GL
-// backend (conservative at 800 and 64 px, raw at 800) with every draw timed on the GPU (VisibilityOptions::timeGpu; the queries add a little to the time),
-// for cullide, cullide_oi and ours: where a frame's time goes. Counters per frame: draws, fetches
+// backend (conservative at 800 and 64 px, raw at 800) with every draw timed on the GPU
+// (VisibilityOptions::timeGpu; the queries add a little to the time), for cullide, cullide_oi and
+// ours: where a frame's time goes. Counters per frame: draws, fetches
 // (read-backs), fetch_wait_ms (the CPU waiting for answers: the GPU finishing what was issued, then
 // the copy), gpu_draw_ms (the GPU's time in the draws) and cpu_ms (the rest: the strategy and the
 // issuing of draws, cull time minus the waits).
