@@ -7,9 +7,9 @@
 //
 //
 // cpu_tiles/env3/<strategy>/<evaluation>/threads:<n>/manual_time: the same on the cpu backend at
-// 800 px for ours, cullide and cullide_oi, evaluated on demand in tiles of 16, 32 or 64 pixels (tile:<t>) or
-// plainly (plain: every write rasterised, every test tested, one tile), at 1 and 2 threads: what
-// the tile size and the threads change, with the tile counters.
+// 800 px for ours, cullide and cullide_oi, evaluated on demand in tiles of 16, 32 or 64 pixels
+// (tile:<t>) or plainly (plain: every write rasterised, every test tested, one tile), at 1 and 2
+// threads: what the tile size and the threads change, with the tile counters.
 //
 // gl_profile/env3/<strategy>/<backend>/res:<800|64>[/raw]/manual_time: the same cull on a GL
 // backend (conservative at 800 and 64 px, raw at 800) with every draw timed on the GPU
@@ -172,12 +172,12 @@ void registerCullBenchmarks(RecordedFrames& frames) {
     for (const std::string strategy : {"cullide", "cullide_oi", "ours"}) {
       if (!DetectorRegistry::builtin().runsOn(strategy, backend)) continue;
       for (const auto& [resolution, raw] : {std::pair{800, false}, {800, true}, {64, false}})
-        registerMilliseconds(cellName("gl_profile", "env3", strategy, backend, resolution) +
-                                 (raw ? "/raw" : ""),
-                             [&frames, strategy, backend, resolution, raw](benchmark::State& state) {
-                               cullMeasuredFrame(state, frames, "env3", strategy, backend,
-                                                 resolution, {}, GlProfiling{true, raw});
-                             })
+        registerMilliseconds(
+            cellName("gl_profile", "env3", strategy, backend, resolution) + (raw ? "/raw" : ""),
+            [&frames, strategy, backend, resolution, raw](benchmark::State& state) {
+              cullMeasuredFrame(state, frames, "env3", strategy, backend, resolution, {},
+                                GlProfiling{true, raw});
+            })
             ->UseManualTime();
     }
   }
