@@ -100,8 +100,10 @@ void readBuffer(CpuRasterBackend& backend, int resolution, Outcome& out) {
 constexpr CpuEvaluation kPlain{0, false, false};
 
 // The demand-driven settings compared with the plain evaluation, one test case each: tiles of one
-// block, of 4 x 4 and of 8 x 8, with and without the early-out; each at 1, 2 and 4 threads.
-using Setting = std::tuple<int, bool>;
+// block, of 4 x 4 and of 8 x 8, with and without the early-out, with the default limits on pending
+// writes or with so few allowed (2 a block, 7 a tile) that they are drawn all the time; each at
+// 1, 2 and 4 threads.
+using Setting = std::tuple<int, bool, bool>;
 
 class CpuDemandEvaluation : public testing::TestWithParam<Setting> {
  protected:
@@ -109,12 +111,13 @@ class CpuDemandEvaluation : public testing::TestWithParam<Setting> {
   // outcome.
   Outcome expectSameAsPlain(const SceneGeometry& scene, const std::vector<Pose>& poses,
                             const Stream& stream, bool conservative) const {
-    const auto [tile, earlyOut] = GetParam();
+    const auto [tile, earlyOut, fewPending] = GetParam();
+    CpuEvaluation evaluation{tile, true, earlyOut};
+    if (fewPending) evaluation.mostPendingInBlock = 2, evaluation.mostPendingInTile = 7;
     const Outcome plain = run(scene, poses, stream, conservative, kPlain, 1);
     for (int threads : {1, 2, 4}) {
       SCOPED_TRACE(testing::Message() << threads << " threads");
-      const Outcome demand =
-          run(scene, poses, stream, conservative, CpuEvaluation{tile, true, earlyOut}, threads);
+      const Outcome demand = run(scene, poses, stream, conservative, evaluation, threads);
       EXPECT_EQ(demand.answers, plain.answers);
       EXPECT_EQ(demand.buffer, plain.buffer);
       EXPECT_EQ(demand.counters.queries, plain.counters.queries);
@@ -129,10 +132,12 @@ class CpuDemandEvaluation : public testing::TestWithParam<Setting> {
 };
 
 INSTANTIATE_TEST_SUITE_P(Settings, CpuDemandEvaluation,
-                         testing::Combine(testing::Values(8, 32, 64), testing::Bool()),
+                         testing::Combine(testing::Values(8, 32, 64), testing::Bool(),
+                                          testing::Bool()),
                          [](const auto& param) {
                            return "tile" + std::to_string(std::get<0>(param.param)) +
-                                  (std::get<1>(param.param) ? "_earlyout" : "_noearlyout");
+                                  (std::get<1>(param.param) ? "_earlyout" : "_noearlyout") +
+                                  (std::get<2>(param.param) ? "_fewpending" : "");
                          });
 
 // Both answers occur, and the buffer holds more than its clear value: the comparison decides

@@ -41,6 +41,17 @@ inline bool inMask(BlockMask mask, std::size_t index) {
   return index >= 64 || ((mask >> index) & 1u) != 0;
 }
 
+// Before a test piece reads block `index`: the pending writes that can lie in front of it drawn
+// there (PendingBlocks).
+inline bool unresolved(const PendingBlocks* pending, std::size_t index) {
+  return pending != nullptr && index < 64 && ((pending->blocks >> index) & 1u) != 0;
+}
+inline void resolveBlock(PendingBlocks* pending, std::size_t index, const TriangleRaster& r) {
+  if (!unresolved(pending, index)) return;
+  if (!pending->resolve(pending->context, index, r.zHi))
+    pending->blocks &= ~(BlockMask{1} << index);
+}
+
 // The blocks of the triangle's pixel box inside the buffer's window (inclusive; empty when the
 // box misses it).
 struct BlockRange {
@@ -287,7 +298,8 @@ HWY_INLINE bool writeBlock(CpuDepthBuffer& buffer, std::size_t index, const Lane
 // returns true at its first occluded sample.
 template <bool kIsTest, bool kOthers>
 bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-                BlockMask mask, const Writer& writer, RasterWork& work) {
+                BlockMask mask, const Writer& writer, RasterWork& work,
+                PendingBlocks* pending = nullptr) {
   const D d;
   const bool oneBlock = r.x0 / kBlock == r.x1 / kBlock && r.y0 / kBlock == r.y1 / kBlock;
   const auto sign = hn::Set(d, pass.sign);
@@ -297,6 +309,13 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
     for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
       const std::size_t index = buffer.blockIndex(bx, by);
       if (!inMask(mask, index)) continue;
+      if constexpr (kIsTest) {
+        if (unresolved(pending, index)) {
+          // Writes are drawn only where the piece has pixels.
+          if (!oneBlock && blockCover(r, bx, by) == BlockCover::None) continue;
+          resolveBlock(pending, index, r);
+        }
+      }
       const BlockKeys stored = blockKeys(buffer, index, pass.sign);
       if (blockDecides<kIsTest>(r, stored)) continue;
       // A test of a triangle inside one block needs no cover: its pixels are all there is.
@@ -325,7 +344,8 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
 // step 1 (zHi for a test, zLo for a write).
 template <bool kIsTest, bool kOthers>
 bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-               BlockMask mask, const Writer& writer, RasterWork& work) {
+               BlockMask mask, const Writer& writer, RasterWork& work,
+               PendingBlocks* pending = nullptr) {
   const int x0 = std::max(r.x0, buffer.pixelX0()), x1 = std::min(r.x1, buffer.pixelX1());
   const int y0 = std::max(r.y0, buffer.pixelY0()), y1 = std::min(r.y1, buffer.pixelY1());
   const float value = pass.sign * r.zLo;
@@ -333,6 +353,7 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
     for (int x = x0; x <= x1; ++x) {
       const std::size_t index = buffer.blockIndex(x / kBlock, y / kBlock);
       if (!inMask(mask, index)) continue;
+      if constexpr (kIsTest) resolveBlock(pending, index, r);
       const BlockKeys stored = blockKeys(buffer, index, pass.sign);
       if (blockDecides<kIsTest>(r, stored)) continue;
       const int at = (y % kBlock) * kBlock + x % kBlock;
@@ -381,16 +402,18 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
   return false;
 }
 
-// Step 1 of the set-up was enough: the window's blocks under the box decide the piece.
+// Step 1 of the set-up was enough: the window's blocks under the box decide the piece (a block
+// with writes still pending decides nothing).
 template <bool kIsTest>
 bool decidedByBlocks(const CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-                     BlockMask mask) {
+                     BlockMask mask, BlockMask unresolved = 0) {
   const BlockRange blocks = blocksInWindow(buffer, r);
   for (int by = blocks.y0; by <= blocks.y1; ++by)
     for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
       const std::size_t index = buffer.blockIndex(bx, by);
-      if (inMask(mask, index) && !blockDecides<kIsTest>(r, blockKeys(buffer, index, pass.sign)))
-        return false;
+      if (!inMask(mask, index)) continue;
+      if (index < 64 && ((unresolved >> index) & 1u) != 0) return false;
+      if (!blockDecides<kIsTest>(r, blockKeys(buffer, index, pass.sign))) return false;
     }
   return true;
 }
@@ -398,15 +421,18 @@ bool decidedByBlocks(const CpuDepthBuffer& buffer, const RasterPass& pass, const
 // One piece (a triangle, or a quad) tested or written: true when a test finds an occluded sample.
 template <bool kIsTest, bool kOthers, class Piece>
 HWY_INLINE bool drawPiece(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
-                          const Writer& writer, RasterWork& work) {
+                          const Writer& writer, RasterWork& work,
+                          PendingBlocks* pending = nullptr) {
   constexpr RasterRole role = kIsTest ? RasterRole::Test : RasterRole::Write;
   TriangleRaster r;
   if (!setupBounds(t, pass, role, r)) return false;
+  const BlockMask mask = pending != nullptr ? pending->read : kAllBlocks;
   if (smallBox(pass, r))
-    return drawSmall<kIsTest, kOthers>(buffer, pass, r, kAllBlocks, writer, work);
-  if (decidedByBlocks<kIsTest>(buffer, pass, r, kAllBlocks)) return false;
+    return drawSmall<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
+  if (decidedByBlocks<kIsTest>(buffer, pass, r, mask, pending != nullptr ? pending->blocks : 0))
+    return false;
   setupCoverage(t, pass, role, r);
-  return drawBlocks<kIsTest, kOthers>(buffer, pass, r, kAllBlocks, writer, work);
+  return drawBlocks<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
 }
 
 // Pieces prepared to be written later, block by block: those with a pixel in the window.
@@ -482,44 +508,48 @@ void WritePreparedQuads(CpuDepthBuffer& buffer, const RasterPass& pass,
 
 template <bool kOthers, class Piece>
 std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
-                              std::size_t count, const Writer& writer, RasterWork& work) {
+                              std::size_t count, const Writer& writer, RasterWork& work,
+                              PendingBlocks* pending) {
   for (std::size_t i = 0; i < count; ++i)
-    if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work)) return i;
+    if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work, pending)) return i;
   return count;
 }
 template <class Piece>
 std::size_t testAny(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
-                    std::size_t count, std::uint32_t object, RasterWork& work) {
+                    std::size_t count, std::uint32_t object, RasterWork& work,
+                    PendingBlocks* pending) {
   return pass.orderIndependent
-             ? testUntilOccluded<true>(buffer, pass, pieces, count, writerOf(object), work)
-             : testUntilOccluded<false>(buffer, pass, pieces, count, writerOf(object), work);
+             ? testUntilOccluded<true>(buffer, pass, pieces, count, writerOf(object), work, pending)
+             : testUntilOccluded<false>(buffer, pass, pieces, count, writerOf(object), work,
+                                        pending);
 }
 std::size_t TestUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                               const ScreenTriangle* triangles, std::size_t count,
-                              std::uint32_t object, RasterWork& work) {
-  return testAny(buffer, pass, triangles, count, object, work);
+                              std::uint32_t object, RasterWork& work, PendingBlocks* pending) {
+  return testAny(buffer, pass, triangles, count, object, work, pending);
 }
 std::size_t TestQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                    const ScreenQuad* quads, std::size_t count, std::uint32_t object,
-                                   RasterWork& work) {
-  return testAny(buffer, pass, quads, count, object, work);
+                                   RasterWork& work, PendingBlocks* pending) {
+  return testAny(buffer, pass, quads, count, object, work, pending);
 }
 
 template <bool kOthers>
 void testEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
-              std::size_t count, std::uint8_t* fullyVisible, const Writer& writer,
-              RasterWork& work) {
+              std::size_t count, std::uint8_t* fullyVisible, const Writer& writer, RasterWork& work,
+              PendingBlocks* pending) {
   for (std::size_t i = 0; i < count; ++i)
-    if (fullyVisible[i] && drawPiece<kTest, kOthers>(buffer, pass, triangles[i], writer, work))
+    if (fullyVisible[i] &&
+        drawPiece<kTest, kOthers>(buffer, pass, triangles[i], writer, work, pending))
       fullyVisible[i] = 0;
 }
 void TestEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
-              std::size_t count, std::uint8_t* fullyVisible, std::uint32_t object,
-              RasterWork& work) {
+              std::size_t count, std::uint8_t* fullyVisible, std::uint32_t object, RasterWork& work,
+              PendingBlocks* pending) {
   if (pass.orderIndependent)
-    testEach<true>(buffer, pass, triangles, count, fullyVisible, writerOf(object), work);
+    testEach<true>(buffer, pass, triangles, count, fullyVisible, writerOf(object), work, pending);
   else
-    testEach<false>(buffer, pass, triangles, count, fullyVisible, writerOf(object), work);
+    testEach<false>(buffer, pass, triangles, count, fullyVisible, writerOf(object), work, pending);
 }
 
 template <bool kOthers, class Piece>
@@ -567,16 +597,16 @@ HWY_EXPORT(TargetName);
 
 std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                        std::span<const ScreenTriangle> triangles, RasterWork& work,
-                                       std::uint32_t object) {
+                                       std::uint32_t object, PendingBlocks* pending) {
   return HWY_DYNAMIC_DISPATCH(TestUntilOccluded)(buffer, pass, triangles.data(), triangles.size(),
-                                                 object, work);
+                                                 object, work, pending);
 }
 
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
-                      RasterWork& work, std::uint32_t object) {
+                      RasterWork& work, std::uint32_t object, PendingBlocks* pending) {
   HWY_DYNAMIC_DISPATCH(TestEach)
-  (buffer, pass, triangles.data(), triangles.size(), fullyVisible, object, work);
+  (buffer, pass, triangles.data(), triangles.size(), fullyVisible, object, work, pending);
 }
 
 void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
@@ -587,9 +617,9 @@ void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
 
 std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                    std::span<const ScreenQuad> quads, RasterWork& work,
-                                   std::uint32_t object) {
+                                   std::uint32_t object, PendingBlocks* pending) {
   return HWY_DYNAMIC_DISPATCH(TestQuadsUntilOccluded)(buffer, pass, quads.data(), quads.size(),
-                                                      object, work);
+                                                      object, work, pending);
 }
 
 void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,

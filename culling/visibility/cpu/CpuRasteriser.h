@@ -25,6 +25,25 @@ struct RasterWork {
   }
 };
 
+// Bit i of a mask is block i of the buffer's window (CpuDepthBuffer::blockIndex; windows of at
+// most 64 blocks, a larger one is drawn whole with kAllBlocks).
+using BlockMask = std::uint64_t;
+inline constexpr BlockMask kAllBlocks = ~BlockMask{0};
+
+// Blocks of the window whose stored depths a test may not read yet: writes still pending there
+// (CpuTileEvaluation) can lie in front of it. Before a test piece reads block i of `blocks`, it
+// calls resolve(context, i, zHi) (zHi: the farthest key the piece can test, in the pass' key
+// order), which draws there the pending writes that can lie in front of such a key and returns
+// whether any is left undrawn there for the test's other pieces; if none, the block leaves the
+// mask. Windows of at most 64 blocks.
+struct PendingBlocks {
+  BlockMask blocks = 0;
+  // The blocks the test reads at all (the others were decided before).
+  BlockMask read = kAllBlocks;
+  bool (*resolve)(void* context, std::size_t block, float zHi) = nullptr;
+  void* context = nullptr;
+};
+
 // In an order-independent pass (RasterPass::orderIndependent, a buffer with the others' planes)
 // every function takes the object whose pieces it draws: a test reads the nearest value any other
 // object wrote, a write keeps the nearest value, its object and the others' nearest.
@@ -33,12 +52,14 @@ struct RasterWork {
 // sample (at or behind the stored depth), or triangles.size() when the piece is fully visible.
 [[nodiscard]] std::size_t testTrianglesUntilOccluded(
     CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenTriangle> triangles,
-    RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject);
+    RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject,
+    PendingBlocks* pending = nullptr);
 // Tests each triangle as its own piece: fullyVisible[i] = 0 where triangle i has an occluded
 // sample; triangles whose entry is already 0 are not tested.
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
-                      RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject);
+                      RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject,
+                      PendingBlocks* pending = nullptr);
 // Writes the triangles in order (depth test "nearer than stored").
 void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
                     std::span<const ScreenTriangle> triangles, RasterWork& work,
@@ -48,15 +69,12 @@ void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
 [[nodiscard]] std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                                  std::span<const ScreenQuad> quads,
                                                  RasterWork& work,
-                                                 std::uint32_t object = CpuDepthBuffer::kNoObject);
+                                                 std::uint32_t object = CpuDepthBuffer::kNoObject,
+                                                 PendingBlocks* pending = nullptr);
 void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,
                 RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject);
 
-// Writes prepared once and drawn block by block (a write drawn where tests need it, in parts): bit
-// i of a mask is block i of the buffer's window (CpuDepthBuffer::blockIndex; windows of at most 64
-// blocks, a larger one is drawn whole with kAllBlocks).
-using BlockMask = std::uint64_t;
-inline constexpr BlockMask kAllBlocks = ~BlockMask{0};
+// Writes prepared once and drawn block by block (a write drawn where tests need it, in parts).
 // A piece with its pixel box and key bounds set up (step 1), the blocks of the window its box
 // reaches, and its coverage (step 2) once a block needed it.
 template <class Piece>

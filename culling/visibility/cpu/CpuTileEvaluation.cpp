@@ -11,7 +11,6 @@ namespace cdb {
 namespace {
 
 constexpr int kBlock = CpuDepthBuffer::kBlock;
-constexpr std::size_t kMostPending = 256;
 
 PixelRect tileRect(const CpuDepthBuffer& depth) {
   return {depth.pixelX0(), depth.pixelY0(), depth.pixelX1(), depth.pixelY1()};
@@ -106,14 +105,71 @@ void drawPending(CpuTileState& state, const CpuScene& scene, CpuPendingWrite& p,
 }
 
 void drawAllPending(CpuTileState& state, const CpuScene& scene, CpuTileWork& work) {
-  for (CpuPendingWrite& p : state.pending) drawPending(state, scene, p, p.remaining, work);
+  for (CpuPendingWrite& p : state.pending)
+    if (p.remaining != 0) drawPending(state, scene, p, p.remaining, work);
 }
 
 // No write pending any more, nor their prepared pieces.
 void clearPending(CpuTileState& state) {
+  for (BlockMask m = state.pendingBlocks; m != 0; m &= m - 1) {
+    const auto b = static_cast<std::size_t>(std::countr_zero(m));
+    state.pendingIn[b].clear();
+    state.pendingNearest[b] = std::numeric_limits<float>::infinity();
+  }
+  state.pendingBlocks = 0;
   state.pending.clear();
   state.preparedTriangles.used = 0;
   state.preparedQuads.used = 0;
+}
+
+// Draws every write pending in block `b` there.
+void drawBlockPending(CpuTileState& state, const CpuScene& scene, std::size_t b,
+                      CpuTileWork& work) {
+  for (const std::uint32_t i : state.pendingIn[b])
+    drawPending(state, scene, state.pending[i], BlockMask{1} << b, work);
+  state.pendingIn[b].clear();
+  state.pendingNearest[b] = std::numeric_limits<float>::infinity();
+  state.pendingBlocks &= ~(BlockMask{1} << b);
+}
+
+// A write made pending in its blocks; a block with `mostInBlock` pending has them drawn instead,
+// which leaves the same depths.
+void addPending(CpuTileState& state, const CpuScene& scene, const CpuPendingWrite& write,
+                std::size_t mostInBlock, CpuTileWork& work) {
+  const auto index = static_cast<std::uint32_t>(state.pending.size());
+  state.pending.push_back(write);
+  for (BlockMask m = write.remaining; m != 0; m &= m - 1) {
+    const auto b = static_cast<std::size_t>(std::countr_zero(m));
+    state.pendingIn[b].push_back(index);
+    state.pendingNearest[b] = std::min(state.pendingNearest[b], write.kLo);
+  }
+  state.pendingBlocks |= write.remaining;
+  for (BlockMask m = write.remaining; m != 0; m &= m - 1) {
+    const auto b = static_cast<std::size_t>(std::countr_zero(m));
+    if (state.pendingIn[b].size() >= mostInBlock) drawBlockPending(state, scene, b, work);
+  }
+}
+
+// Whether pending write `p` can lie in front of a key `zHi` of a test of `object`: in an
+// order-independent pass a test reads no write of its own object.
+bool canOcclude(const CpuPendingWrite& p, float zHi, bool orderIndependent, std::uint32_t object) {
+  return p.kLo <= zHi && !(orderIndependent && p.object == object);
+}
+
+// The blocks of `blocks` where a pending write can lie in front of a test (farthest key `kHi`).
+BlockMask blocksReadingPending(const CpuTileState& state, BlockMask blocks, float kHi,
+                               bool orderIndependent, std::uint32_t object) {
+  BlockMask reading = 0;
+  for (BlockMask m = blocks & state.pendingBlocks; m != 0; m &= m - 1) {
+    const auto b = static_cast<std::size_t>(std::countr_zero(m));
+    if (state.pendingNearest[b] > kHi) continue;
+    const auto& list = state.pendingIn[b];
+    if (!orderIndependent || std::any_of(list.begin(), list.end(), [&](std::uint32_t i) {
+          return canOcclude(state.pending[i], kHi, orderIndependent, object);
+        }))
+      reading |= BlockMask{1} << b;
+  }
+  return reading;
 }
 
 // Whether the pieces of an item answer one by one: the triangles of a batch (a box is one piece
@@ -122,14 +178,16 @@ bool answersEachTriangle(const CpuItem& item, const CpuPieces& pieces) {
   return item.answerEach && !pieces.areQuads && item.count > 1;
 }
 
-// Tests an item's pieces against what the tile holds; clears the answers it finds occluded and
-// returns whether any of its answers is still visible.
+// Tests an item's pieces against what the tile holds (with `pending`: drawing the pending writes
+// it may read first, block by block); clears the answers it finds occluded and returns whether any
+// of its answers is still visible.
 bool testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
-                const CpuItem& item, std::uint8_t* visible, CpuAnswers answers, CpuTileWork& work) {
+                const CpuItem& item, std::uint8_t* visible, CpuAnswers answers, CpuTileWork& work,
+                PendingBlocks* pending = nullptr) {
   if (answersEachTriangle(item, pieces)) {
     // One answer per triangle.
     testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster,
-                     item.object);
+                     item.object, pending);
     bool any = false;
     for (std::size_t i = 0; i < pieces.count; ++i) {
       if (!visible[i]) answers.occlude(item.answer + pieces.offset[i]);
@@ -140,11 +198,47 @@ bool testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass
   const bool occluded =
       pieces.areQuads
           ? testQuadsUntilOccluded(depth, raster, {pieces.quads.data(), pieces.count}, work.raster,
-                                   item.object) < pieces.count
+                                   item.object, pending) < pieces.count
           : testTrianglesUntilOccluded(depth, raster, {pieces.triangles.data(), pieces.count},
-                                       work.raster, item.object) < pieces.count;
+                                       work.raster, item.object, pending) < pieces.count;
   if (occluded) answers.occlude(item.answer);
   return !occluded;
+}
+
+// A test drawing the pending writes of its tile it may read where its pieces reach, block by
+// block (PendingBlocks::resolve).
+struct TestResolution {
+  CpuTileState& state;
+  const CpuScene& scene;
+  const CpuItem& item;
+  bool orderIndependent;
+  CpuTileWork& work;
+  bool drew = false;
+};
+bool resolveForTest(void* context, std::size_t block, float zHi) {
+  auto& t = *static_cast<TestResolution*>(context);
+  CpuTileState& state = t.state;
+  const BlockMask bit = BlockMask{1} << block;
+  auto& list = state.pendingIn[block];
+  bool left = false;
+  float nearest = std::numeric_limits<float>::infinity();
+  std::size_t kept = 0;
+  for (const std::uint32_t i : list) {
+    CpuPendingWrite& p = state.pending[i];
+    if (!canOcclude(p, zHi, t.orderIndependent, t.item.object)) {
+      // Behind this piece; maybe not behind a later one of the test.
+      left = left || canOcclude(p, t.item.kHi, t.orderIndependent, t.item.object);
+      list[kept++] = i;
+      nearest = std::min(nearest, p.kLo);
+      continue;
+    }
+    drawPending(state, t.scene, p, bit, t.work);
+    t.drew = true;
+  }
+  list.resize(kept);
+  state.pendingNearest[block] = nearest;
+  if (kept == 0) state.pendingBlocks &= ~bit;
+  return left;
 }
 
 bool answered(const CpuItem& item, CpuAnswers answers) {
@@ -165,6 +259,7 @@ void enterPass(CpuTileState& state, const CpuScene& scene, const RasterPass& ras
   if (state.sign != 0.f) {
     bool behind = true;
     for (const CpuPendingWrite& p : state.pending) {
+      if (p.remaining == 0) continue;
       // Stored values of its keys, then their nearest key in the new order.
       const float vLo = state.sign > 0 ? p.kLo : -p.kHi, vHi = state.sign > 0 ? p.kHi : -p.kLo;
       const float nearest = raster.sign > 0 ? vLo : -vHi;
@@ -218,11 +313,13 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       if (item.kLo >= storedKeys(state.depth, blocks, raster.sign).farthest) continue;
       // A test looks at every pending write of its tile: a list this long (thousands of node boxes
       // in one tile at a low resolution) is drawn instead, which leaves the same depths.
-      if (state.pending.size() == kMostPending) {
+      if (state.pending.size() >= evaluation.mostPendingInTile) {
         drawAllPending(state, scene, work);
         clearPending(state);
       }
-      state.pending.push_back({blocks, item.kLo, item.kHi, item.object, &run, i});
+      addPending(state, scene, {blocks, item.kLo, item.kHi, item.object, &run, i},
+                 evaluation.mostPendingInBlock, work);
+      if (state.pendingBlocks == 0) clearPending(state);
       continue;
     }
     ++work.tests;
@@ -232,11 +329,9 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     }
     const BlockMask blocks =
         evaluation.demandDriven ? blocksUnder(state.depth, item.rect.within(inTile)) : BlockMask{0};
-    const auto reads = [&](const CpuPendingWrite& p) {
-      return (p.remaining & blocks) != 0 && p.kLo <= item.kHi &&
-             !(raster.orderIndependent && p.object == item.object);
-    };
-    const bool readsPending = std::any_of(state.pending.begin(), state.pending.end(), reads);
+    const BlockMask reading =
+        blocksReadingPending(state, blocks, item.kHi, raster.orderIndependent, item.object);
+    const bool readsPending = reading != 0;
     if (evaluation.demandDriven && !readsPending &&
         item.kHi < storedKeys(state.depth, blocks, raster.sign).nearest) {
       ++work.testsByBounds;
@@ -249,15 +344,23 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     if (answersEachTriangle(item, pieces))
       for (std::size_t t = 0; t < pieces.count; ++t)
         visible[t] = !evaluation.earlyOut || answers.visible(item.answer + pieces.offset[t]);
-    // Against what the tile holds first: occluded there, the pending writes stay pending.
-    if (!testPieces(state.depth, pieces, raster, item, visible, answers, work) || !readsPending)
+    if (!readsPending) {
+      testPieces(state.depth, pieces, raster, item, visible, answers, work);
       continue;
-    ++work.testsAfterResolving;
-    for (CpuPendingWrite& p : state.pending)
-      if (reads(p)) drawPending(state, scene, p, blocks, work);
-    std::erase_if(state.pending, [](const CpuPendingWrite& p) { return p.remaining == 0; });
-    if (state.pending.empty()) clearPending(state);
-    testPieces(state.depth, pieces, raster, item, visible, answers, work);
+    }
+    // Against what the tile holds first: occluded there, the pending writes stay pending. Visible
+    // there, the blocks with pending writes it may read are tested again, each once the writes
+    // that can lie in front of the test's piece are drawn there, until a piece is occluded.
+    if (!testPieces(state.depth, pieces, raster, item, visible, answers, work)) continue;
+    PendingBlocks unresolved;
+    unresolved.blocks = reading;
+    unresolved.read = reading;
+    TestResolution resolution{state, scene, item, raster.orderIndependent, work};
+    unresolved.resolve = resolveForTest;
+    unresolved.context = &resolution;
+    testPieces(state.depth, pieces, raster, item, visible, answers, work, &unresolved);
+    if (resolution.drew) ++work.testsAfterResolving;
+    if (state.pendingBlocks == 0) clearPending(state);
   }
 }
 
