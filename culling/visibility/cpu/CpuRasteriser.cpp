@@ -7,6 +7,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <bit>
 
 HWY_BEFORE_NAMESPACE();
 namespace cdb {
@@ -60,6 +61,25 @@ struct BlockRange {
 inline BlockRange blocksInWindow(const CpuDepthBuffer& buffer, const TriangleRaster& r) {
   return {std::max(r.x0 / kBlock, buffer.blockX0()), std::max(r.y0 / kBlock, buffer.blockY0()),
           std::min(r.x1 / kBlock, buffer.blockX1()), std::min(r.y1 / kBlock, buffer.blockY1())};
+}
+// The same, only the rows and columns that hold a block of `mask` (a piece drawn in a few blocks
+// of its box does not walk the others).
+inline BlockRange blocksInMask(const CpuDepthBuffer& buffer, const TriangleRaster& r,
+                               BlockMask mask) {
+  BlockRange range = blocksInWindow(buffer, r);
+  const int nx = buffer.blockX1() - buffer.blockX0() + 1;
+  if (mask == kAllBlocks || buffer.blocks() > 64 || nx >= 64) return range;
+  if (mask == 0) return {range.x0, range.y0, range.x0 - 1, range.y0 - 1};
+  const int rowLo = std::countr_zero(mask) / nx, rowHi = (63 - std::countl_zero(mask)) / nx;
+  BlockMask columns = 0;
+  for (int row = rowLo; row <= rowHi; ++row) columns |= mask >> (row * nx);
+  columns &= (BlockMask{1} << nx) - 1;
+  const int colLo = std::countr_zero(columns), colHi = 63 - std::countl_zero(columns);
+  range.x0 = std::max(range.x0, buffer.blockX0() + colLo);
+  range.x1 = std::min(range.x1, buffer.blockX0() + colHi);
+  range.y0 = std::max(range.y0, buffer.blockY0() + rowLo);
+  range.y1 = std::min(range.y1, buffer.blockY0() + rowHi);
+  return range;
 }
 
 // How the triangle covers the pixels of its box inside block (bx, by), from the range of each
@@ -304,7 +324,7 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
   const bool oneBlock = r.x0 / kBlock == r.x1 / kBlock && r.y0 / kBlock == r.y1 / kBlock;
   const auto sign = hn::Set(d, pass.sign);
   const Lanes l = lanesOf(r);
-  const BlockRange blocks = blocksInWindow(buffer, r);
+  const BlockRange blocks = blocksInMask(buffer, r, mask);
   for (int by = blocks.y0; by <= blocks.y1; ++by) {
     for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
       const std::size_t index = buffer.blockIndex(bx, by);
@@ -407,7 +427,7 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
 template <bool kIsTest>
 bool decidedByBlocks(const CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
                      BlockMask mask, BlockMask unresolved = 0) {
-  const BlockRange blocks = blocksInWindow(buffer, r);
+  const BlockRange blocks = blocksInMask(buffer, r, mask);
   for (int by = blocks.y0; by <= blocks.y1; ++by)
     for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
       const std::size_t index = buffer.blockIndex(bx, by);
