@@ -207,7 +207,9 @@ TEST(CpuRasterBackend, BatchAnswersFollowTheIssuedOrder) {
       const std::uint8_t a = answers[alone[t]];
       visible += a;
       EXPECT_EQ(answers[whole + t], a) << "triangle " << t;
-      if (t >= 100 && t < 400) EXPECT_EQ(answers[part + t - 100], a) << "triangle " << t;
+      if (t >= 100 && t < 400) {
+        EXPECT_EQ(answers[part + t - 100], a) << "triangle " << t;
+      }
     }
     for (std::size_t k = 0; k < listed.size(); ++k)
       EXPECT_EQ(answers[shuffled + k], answers[alone[listed[k]]]) << "entry " << k;
@@ -217,8 +219,12 @@ TEST(CpuRasterBackend, BatchAnswersFollowTheIssuedOrder) {
     // Each triangle of the hidden half is occluded, of the other half visible.
     for (std::uint32_t t = 0; t < n; ++t) {
       const float cx = scene.meshes[1].vertices[scene.meshes[1].triangles[t][0]].x();
-      if (cx < -0.15f) EXPECT_EQ(answers[alone[t]], 0) << "triangle " << t;
-      if (cx > 0.15f) EXPECT_EQ(answers[alone[t]], 1) << "triangle " << t;
+      if (cx < -0.15f) {
+        EXPECT_EQ(answers[alone[t]], 0) << "triangle " << t;
+      }
+      if (cx > 0.15f) {
+        EXPECT_EQ(answers[alone[t]], 1) << "triangle " << t;
+      }
     }
   }
 }
