@@ -42,11 +42,12 @@ inline bool inMask(BlockMask mask, std::size_t index) {
   return index >= 64 || ((mask >> index) & 1u) != 0;
 }
 
-// Before a test piece reads block `index`: the pending writes that can lie in front of it drawn
-// there (PendingBlocks).
+// Whether block `index` still has writes pending that a test may read (PendingBlocks).
 inline bool unresolved(const PendingBlocks* pending, std::size_t index) {
   return pending != nullptr && index < 64 && ((pending->blocks >> index) & 1u) != 0;
 }
+// Before a test piece reads block `index`: the pending writes that can lie in front of it drawn
+// there.
 inline void resolveBlock(PendingBlocks* pending, std::size_t index, const TriangleRaster& r) {
   if (!unresolved(pending, index)) return;
   if (!pending->resolve(pending->context, index, r.zHi))
@@ -426,13 +427,13 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
 // with writes still pending decides nothing).
 template <bool kIsTest>
 bool decidedByBlocks(const CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
-                     BlockMask mask, BlockMask unresolved = 0) {
+                     BlockMask mask, const PendingBlocks* pending = nullptr) {
   const BlockRange blocks = blocksInMask(buffer, r, mask);
   for (int by = blocks.y0; by <= blocks.y1; ++by)
     for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
       const std::size_t index = buffer.blockIndex(bx, by);
       if (!inMask(mask, index)) continue;
-      if (index < 64 && ((unresolved >> index) & 1u) != 0) return false;
+      if (unresolved(pending, index)) return false;
       if (!blockDecides<kIsTest>(r, blockKeys(buffer, index, pass.sign))) return false;
     }
   return true;
@@ -449,8 +450,7 @@ HWY_INLINE bool drawPiece(CpuDepthBuffer& buffer, const RasterPass& pass, const 
   const BlockMask mask = pending != nullptr ? pending->read : kAllBlocks;
   if (smallBox(pass, r))
     return drawSmall<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
-  if (decidedByBlocks<kIsTest>(buffer, pass, r, mask, pending != nullptr ? pending->blocks : 0))
-    return false;
+  if (decidedByBlocks<kIsTest>(buffer, pass, r, mask, pending)) return false;
   setupCoverage(t, pass, role, r);
   return drawBlocks<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
 }

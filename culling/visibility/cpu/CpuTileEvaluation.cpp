@@ -109,14 +109,17 @@ void drawAllPending(CpuTileState& state, const CpuScene& scene, CpuTileWork& wor
     if (p.remaining != 0) drawPending(state, scene, p, p.remaining, work);
 }
 
+// Block `b` with no write pending.
+void emptyBlock(CpuTileState& state, std::size_t b) {
+  state.pendingIn[b].clear();
+  state.pendingNearest[b] = std::numeric_limits<float>::infinity();
+  state.pendingBlocks &= ~(BlockMask{1} << b);
+}
+
 // No write pending any more, nor their prepared pieces.
 void clearPending(CpuTileState& state) {
-  for (BlockMask m = state.pendingBlocks; m != 0; m &= m - 1) {
-    const auto b = static_cast<std::size_t>(std::countr_zero(m));
-    state.pendingIn[b].clear();
-    state.pendingNearest[b] = std::numeric_limits<float>::infinity();
-  }
-  state.pendingBlocks = 0;
+  for (BlockMask m = state.pendingBlocks; m != 0; m &= m - 1)
+    emptyBlock(state, static_cast<std::size_t>(std::countr_zero(m)));
   state.pending.clear();
   state.preparedTriangles.used = 0;
   state.preparedQuads.used = 0;
@@ -127,9 +130,7 @@ void drawBlockPending(CpuTileState& state, const CpuScene& scene, std::size_t b,
                       CpuTileWork& work) {
   for (const std::uint32_t i : state.pendingIn[b])
     drawPending(state, scene, state.pending[i], BlockMask{1} << b, work);
-  state.pendingIn[b].clear();
-  state.pendingNearest[b] = std::numeric_limits<float>::infinity();
-  state.pendingBlocks &= ~(BlockMask{1} << b);
+  emptyBlock(state, b);
 }
 
 // A write made pending in its blocks; a block with `mostInBlock` pending has them drawn instead,
@@ -311,8 +312,8 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       // At or behind everything stored under it (pending writes only add nearer keys): it
       // changes nothing.
       if (item.kLo >= storedKeys(state.depth, blocks, raster.sign).farthest) continue;
-      // A test looks at every pending write of its tile: a list this long (thousands of node boxes
-      // in one tile at a low resolution) is drawn instead, which leaves the same depths.
+      // A pending write keeps its prepared pieces: a tile with this many (thousands of node boxes
+      // in one tile at a low resolution) has them drawn instead, which leaves the same depths.
       if (state.pending.size() >= evaluation.mostPendingInTile) {
         drawAllPending(state, scene, work);
         clearPending(state);
