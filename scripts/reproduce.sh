@@ -36,7 +36,8 @@
 # output folder (not the committed tables, figures and reports).
 # After the runs, each environment of the primary backend gets snapshot.png (and .json), the report's
 # picture of the scene (thesis Figures 4.1, 4.5, 4.10), drawn from the poses the run recorded.
-# --env runs only the named environments of the primary backend (a rerun of one, say).
+# --env runs only the named environments (a rerun of one, say), and of the standard profile's
+# subsets on other backends only theirs.
 # --out DIR writes into DIR instead of results/<profile> (e.g. one folder per machine).
 # --no-build runs build/cdbench as it is (a machine that has the binary and its libraries but
 # not the packages to build it); --no-report leaves the report for `scripts/report.py DIR
@@ -157,7 +158,9 @@ for env in ${envs//,/ }; do
   run "$primary" "$env" "${common[@]}"
 done
 for env in ${envs//,/ }; do snapshot "$env"; done
-if [[ $profile == standard ]]; then
+# chosen ENV: whether --env names ENV.
+chosen() { [[ ,$envs, == *,$1,* ]]; }
+if [[ $profile == standard ]] && { chosen env1 || chosen env3; }; then
   for backend in gl-flags gl-queries; do
     [[ $backend == "$primary" ]] && continue
     if ! build/cdbench info 2>/dev/null | grep -q "^  $backend  *works"; then
@@ -167,12 +170,13 @@ if [[ $profile == standard ]]; then
     # The configs' culling strategies only: the reference rows draw nothing, and the report takes
     # the primary's rows of these frames (its stride divides these strides, its repeats hold these).
     culling=(--strategies cullide,cullide_bvh,quick_cullide,ours)
+    # Only the environments asked for (--env): a rerun of env2 alone runs no subset.
     if [[ $backend == gl-flags ]]; then
-      run gl-flags env1 --repeats 2 --frame-stride 15 --resolutions 500 "${culling[@]}"
-      run gl-flags env3 --repeats 2 --frame-stride 15 --objects 50,125 "${culling[@]}"
+      chosen env1 && run gl-flags env1 --repeats 2 --frame-stride 15 --resolutions 500 "${culling[@]}"
+      chosen env3 && run gl-flags env3 --repeats 2 --frame-stride 15 --objects 50,125 "${culling[@]}"
     else
-      run gl-queries env1 --repeats 2 --frame-stride 30 --resolutions 500 "${culling[@]}"
-      run gl-queries env3 --repeats 2 --frame-stride 30 --objects 50,100 "${culling[@]}"
+      chosen env1 && run gl-queries env1 --repeats 2 --frame-stride 30 --resolutions 500 "${culling[@]}"
+      chosen env3 && run gl-queries env3 --repeats 2 --frame-stride 30 --objects 50,100 "${culling[@]}"
     fi
   done
 fi
