@@ -16,27 +16,35 @@ PixelRect tileRect(const CpuDepthBuffer& depth) {
   return {depth.pixelX0(), depth.pixelY0(), depth.pixelX1(), depth.pixelY1()};
 }
 
-// The blocks of the window under `rect` (inside the window) as a mask.
+// The blocks of the window under `rect` (inside the window) as a mask: one run of bits a row.
 BlockMask blocksUnder(const CpuDepthBuffer& depth, const PixelRect& rect) {
+  if (rect.x0 > rect.x1 || rect.y0 > rect.y1) return 0;
+  const int x0 = rect.x0 / kBlock - depth.blockX0(), x1 = rect.x1 / kBlock - depth.blockX0();
+  const BlockMask row = ((BlockMask{2} << (x1 - x0)) - 1) << x0;
   BlockMask mask = 0;
   for (int by = rect.y0 / kBlock; by <= rect.y1 / kBlock; ++by)
-    for (int bx = rect.x0 / kBlock; bx <= rect.x1 / kBlock; ++bx)
-      mask |= BlockMask{1} << depth.blockIndex(bx, by);
+    mask |= row << depth.blockIndex(depth.blockX0(), by);
   return mask;
 }
 
-// Nearest and farthest stored key over the blocks of `mask`.
-struct StoredKeys {
-  float nearest = 0.f, farthest = 0.f;
-};
-StoredKeys storedKeys(const CpuDepthBuffer& depth, BlockMask mask, float sign) {
-  const auto first = static_cast<std::size_t>(std::countr_zero(mask));
-  float lo = depth.blockMin(first), hi = depth.blockMax(first);
-  for (BlockMask m = mask & (mask - 1); m != 0; m &= m - 1) {
+// Whether every block of `mask` has all its stored keys behind `key` (in the pass' key order):
+// a test whose farthest key that is sees nothing nearer.
+bool storedBehind(const CpuDepthBuffer& depth, BlockMask mask, float sign, float key) {
+  for (BlockMask m = mask; m != 0; m &= m - 1) {
     const auto i = static_cast<std::size_t>(std::countr_zero(m));
-    lo = std::min(lo, depth.blockMin(i)), hi = std::max(hi, depth.blockMax(i));
+    if (!(key < (sign > 0 ? depth.blockMin(i) : -depth.blockMax(i)))) return false;
   }
-  return sign > 0 ? StoredKeys{lo, hi} : StoredKeys{-hi, -lo};
+  return true;
+}
+
+// Whether every block of `mask` has all its stored keys at or in front of `key`: a write whose
+// nearest key that is changes nothing there.
+bool storedInFront(const CpuDepthBuffer& depth, BlockMask mask, float sign, float key) {
+  for (BlockMask m = mask; m != 0; m &= m - 1) {
+    const auto i = static_cast<std::size_t>(std::countr_zero(m));
+    if (!(key >= (sign > 0 ? depth.blockMax(i) : -depth.blockMin(i)))) return false;
+  }
+  return true;
 }
 
 // The pieces of an item that reach the buffer's window, in its pass' screen space.
@@ -311,7 +319,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       const BlockMask blocks = blocksUnder(state.depth, item.rect.within(inTile));
       // At or behind everything stored under it (pending writes only add nearer keys): it
       // changes nothing.
-      if (item.kLo >= storedKeys(state.depth, blocks, raster.sign).farthest) continue;
+      if (storedInFront(state.depth, blocks, raster.sign, item.kLo)) continue;
       // A pending write keeps its prepared pieces: a tile with this many (thousands of node boxes
       // in one tile at a low resolution) has them drawn instead, which leaves the same depths.
       if (state.pending.size() >= evaluation.mostPendingInTile) {
@@ -334,7 +342,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
         blocksReadingPending(state, blocks, item.kHi, raster.orderIndependent, item.object);
     const bool readsPending = reading != 0;
     if (evaluation.demandDriven && !readsPending &&
-        item.kHi < storedKeys(state.depth, blocks, raster.sign).nearest) {
+        storedBehind(state.depth, blocks, raster.sign, item.kHi)) {
       ++work.testsByBounds;
       continue;
     }
