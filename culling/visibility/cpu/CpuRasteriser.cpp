@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <limits>
 
 HWY_BEFORE_NAMESPACE();
 namespace cdb {
@@ -46,12 +48,27 @@ inline bool inMask(BlockMask mask, std::size_t index) {
 inline bool unresolved(const PendingBlocks* pending, std::size_t index) {
   return pending != nullptr && index < 64 && ((pending->blocks >> index) & 1u) != 0;
 }
-// Before a test piece reads block `index`: the pending writes that can lie in front of it drawn
-// there.
-inline void resolveBlock(PendingBlocks* pending, std::size_t index, const TriangleRaster& r) {
+// Before a test piece reads block `index`: the pending writes that can lie in front of it there
+// (nearest key at most `zHi`, the farthest key its pixels there can have) drawn there.
+inline void resolveBlock(PendingBlocks* pending, std::size_t index, float zHi) {
   if (!unresolved(pending, index)) return;
-  if (!pending->resolve(pending->context, index, r.zHi))
-    pending->blocks &= ~(BlockMask{1} << index);
+  if (!pending->resolve(pending->context, index, zHi)) pending->blocks &= ~(BlockMask{1} << index);
+}
+
+// The farthest key a pixel of the triangle's box inside block (bx, by) can have: its depth plane
+// is largest over a rectangle at a corner, evaluated in double with room for the float
+// evaluation's rounding (keyAt: two fused multiply-adds), and clamped like a key. Tighter than zHi
+// where a face spans many blocks at a slant, so fewer pending writes are drawn for it.
+inline float farthestKeyIn(const TriangleRaster& r, int bx, int by) {
+  const double dxA = std::max(r.x0, bx * kBlock) - r.x0;
+  const double dxB = std::min(r.x1, bx * kBlock + kBlock - 1) - r.x0;
+  const double dyA = std::max(r.y0, by * kBlock) - r.y0;
+  const double dyB = std::min(r.y1, by * kBlock + kBlock - 1) - r.y0;
+  const double zx = std::max(r.za * dxA, r.za * dxB), zy = std::max(r.zb * dyA, r.zb * dyB);
+  const double plane = r.zc + zx + zy;
+  const double rounding = 1e-6 * (std::abs(double{r.zc}) + std::abs(zx) + std::abs(zy));
+  const double key = std::clamp(plane + rounding, double{r.zLo}, double{r.zHi});
+  return std::nextafter(static_cast<float>(key), std::numeric_limits<float>::infinity());
 }
 
 // The blocks of the triangle's pixel box inside the buffer's window (inclusive; empty when the
@@ -334,7 +351,7 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
         if (unresolved(pending, index)) {
           // Writes are drawn only where the piece has pixels.
           if (!oneBlock && blockCover(r, bx, by) == BlockCover::None) continue;
-          resolveBlock(pending, index, r);
+          resolveBlock(pending, index, farthestKeyIn(r, bx, by));
         }
       }
       const BlockKeys stored = blockKeys(buffer, index, pass.sign);
@@ -374,7 +391,7 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
     for (int x = x0; x <= x1; ++x) {
       const std::size_t index = buffer.blockIndex(x / kBlock, y / kBlock);
       if (!inMask(mask, index)) continue;
-      if constexpr (kIsTest) resolveBlock(pending, index, r);
+      if constexpr (kIsTest) resolveBlock(pending, index, r.zHi);
       const BlockKeys stored = blockKeys(buffer, index, pass.sign);
       if (blockDecides<kIsTest>(r, stored)) continue;
       const int at = (y % kBlock) * kBlock + x % kBlock;
