@@ -48,6 +48,17 @@ inline bool inMask(BlockMask mask, std::size_t index) {
 inline bool unresolved(const PendingBlocks* pending, std::size_t index) {
   return pending != nullptr && index < 64 && ((pending->blocks >> index) & 1u) != 0;
 }
+
+// The part of the triangle's pixel box inside block (bx, by), as offsets from the box's corner
+// (x0, y0): columns dxA..dxB, rows dyA..dyB.
+struct BoxInBlock {
+  int dxA, dxB, dyA, dyB;
+};
+inline BoxInBlock boxInBlock(const TriangleRaster& r, int bx, int by) {
+  return {std::max(r.x0, bx * kBlock) - r.x0, std::min(r.x1, bx * kBlock + kBlock - 1) - r.x0,
+          std::max(r.y0, by * kBlock) - r.y0, std::min(r.y1, by * kBlock + kBlock - 1) - r.y0};
+}
+
 // Before a test piece reads block `index`: the pending writes that can lie in front of it there
 // (nearest key at most `zHi`, the farthest key its pixels there can have) drawn there.
 inline void resolveBlock(PendingBlocks* pending, std::size_t index, float zHi) {
@@ -60,11 +71,9 @@ inline void resolveBlock(PendingBlocks* pending, std::size_t index, float zHi) {
 // evaluation's rounding (keyAt: two fused multiply-adds), and clamped like a key. Tighter than zHi
 // where a face spans many blocks at a slant, so fewer pending writes are drawn for it.
 inline float farthestKeyIn(const TriangleRaster& r, int bx, int by) {
-  const double dxA = std::max(r.x0, bx * kBlock) - r.x0;
-  const double dxB = std::min(r.x1, bx * kBlock + kBlock - 1) - r.x0;
-  const double dyA = std::max(r.y0, by * kBlock) - r.y0;
-  const double dyB = std::min(r.y1, by * kBlock + kBlock - 1) - r.y0;
-  const double zx = std::max(r.za * dxA, r.za * dxB), zy = std::max(r.zb * dyA, r.zb * dyB);
+  const BoxInBlock o = boxInBlock(r, bx, by);
+  const double zx = std::max(double{r.za} * o.dxA, double{r.za} * o.dxB);
+  const double zy = std::max(double{r.zb} * o.dyA, double{r.zb} * o.dyB);
   const double plane = r.zc + zx + zy;
   const double rounding = 1e-6 * (std::abs(double{r.zc}) + std::abs(zx) + std::abs(zy));
   const double key = std::clamp(plane + rounding, double{r.zLo}, double{r.zHi});
@@ -108,10 +117,9 @@ inline BlockRange blocksInMask(const CpuDepthBuffer& buffer, const TriangleRaste
 // from the triangle); Partial otherwise.
 enum class BlockCover { None, Partial, Whole };
 inline BlockCover blockCover(const TriangleRaster& r, int bx, int by) {
-  const float dxA = static_cast<float>(std::max(r.x0, bx * kBlock) - r.x0);
-  const float dxB = static_cast<float>(std::min(r.x1, bx * kBlock + kBlock - 1) - r.x0);
-  const float dyA = static_cast<float>(std::max(r.y0, by * kBlock) - r.y0);
-  const float dyB = static_cast<float>(std::min(r.y1, by * kBlock + kBlock - 1) - r.y0);
+  const BoxInBlock o = boxInBlock(r, bx, by);
+  const float dxA = static_cast<float>(o.dxA), dxB = static_cast<float>(o.dxB);
+  const float dyA = static_cast<float>(o.dyA), dyB = static_cast<float>(o.dyB);
   BlockCover cover = BlockCover::Whole;
   for (int e = 0; e < 3; ++e) {
     const float ax = r.a[e] * dxA, bx2 = r.a[e] * dxB, ay = r.b[e] * dyA, by2 = r.b[e] * dyB;
