@@ -351,7 +351,7 @@ void CpuRasterBackend::flush() {
     CpuTileState& state = at.store >= 0 ? stores_[at.store][t] : scratch_.local();
     if (at.store < 0 || state.chain != at.id) startTile(state, chains[c], t, at.clearValue, at.id);
     evaluateTile(state, CpuScene{*scene_, meshBounds_}, run, c, t, evaluation_, answers,
-                 work_.local());
+                 prepared_.local(), work_.local());
   };
   if (arena && units_.size() > 1) {
     arena->execute([&] { tbb::parallel_for(std::size_t{0}, units_.size(), runUnit); });

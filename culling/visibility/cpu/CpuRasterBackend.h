@@ -123,6 +123,7 @@ class CpuRasterBackend final : public VisibilityBackend {
   std::uint64_t nextChainId_ = 1;
   std::vector<CpuTileState> stores_[2];
   tbb::enumerable_thread_specific<CpuTileState> scratch_;
+  tbb::enumerable_thread_specific<CpuPreparedScratch> prepared_;
   tbb::enumerable_thread_specific<CpuTileWork> work_;
   std::vector<std::shared_ptr<CpuRun>> spareRuns_;
   CpuOrderScratch orderScratch_;

@@ -90,14 +90,22 @@ void drawPrepared(CpuPreparedPieces<Piece>& prepared, CpuDepthBuffer& depth,
     p.firstPrepared = static_cast<std::uint32_t>(prepared.used);
     p.preparedCount = static_cast<std::uint32_t>(n);
     prepared.used += n;
-    ++work.writesRasterised;
+    if (!p.counted) ++work.writesRasterised;
+    p.counted = true;
   }
   writePrepared(depth, raster, {prepared.storage.data() + p.firstPrepared, p.preparedCount},
                 blocks & p.remaining, work.raster, p.object);
 }
 
-void drawPending(CpuTileState& state, const CpuScene& scene, CpuPendingWrite& p, BlockMask blocks,
+// What evaluating a tile works on: its state and the thread's prepared pieces.
+struct TileAt {
+  CpuTileState& state;
+  CpuPreparedScratch& prepared;
+};
+
+void drawPending(TileAt tile, const CpuScene& scene, CpuPendingWrite& p, BlockMask blocks,
                  CpuTileWork& work) {
+  CpuTileState& state = tile.state;
   const CpuItem& item = p.run->bins.items[p.item];
   const RasterPass& raster = p.run->recording.passes[item.pass].raster;
   CpuPieces pieces;
@@ -106,15 +114,15 @@ void drawPending(CpuTileState& state, const CpuScene& scene, CpuPendingWrite& p,
     p.quads = pieces.areQuads;
   }
   if (p.quads)
-    drawPrepared(state.preparedQuads, state.depth, raster, pieces, p, blocks, work);
+    drawPrepared(tile.prepared.quads, state.depth, raster, pieces, p, blocks, work);
   else
-    drawPrepared(state.preparedTriangles, state.depth, raster, pieces, p, blocks, work);
+    drawPrepared(tile.prepared.triangles, state.depth, raster, pieces, p, blocks, work);
   p.remaining &= ~blocks;
 }
 
-void drawAllPending(CpuTileState& state, const CpuScene& scene, CpuTileWork& work) {
-  for (CpuPendingWrite& p : state.pending)
-    if (p.remaining != 0) drawPending(state, scene, p, p.remaining, work);
+void drawAllPending(TileAt tile, const CpuScene& scene, CpuTileWork& work) {
+  for (CpuPendingWrite& p : tile.state.pending)
+    if (p.remaining != 0) drawPending(tile, scene, p, p.remaining, work);
 }
 
 // Block `b` with no write pending.
@@ -124,27 +132,41 @@ void emptyBlock(CpuTileState& state, std::size_t b) {
   state.pendingBlocks &= ~(BlockMask{1} << b);
 }
 
-// No write pending any more, nor their prepared pieces.
+// No write pending any more.
 void clearPending(CpuTileState& state) {
   for (BlockMask m = state.pendingBlocks; m != 0; m &= m - 1)
     emptyBlock(state, static_cast<std::size_t>(std::countr_zero(m)));
   state.pending.clear();
-  state.preparedTriangles.used = 0;
-  state.preparedQuads.used = 0;
+}
+
+// No write pending any more, nor their prepared pieces.
+void clearPending(TileAt tile) {
+  clearPending(tile.state);
+  tile.prepared.triangles.used = 0;
+  tile.prepared.quads.used = 0;
+}
+
+// The end of a tile's evaluation: the writes left pending give their prepared pieces back (a
+// later fetch going on in the tile prepares them again), so the thread's storage serves its next
+// tile.
+void releasePrepared(TileAt tile) {
+  for (CpuPendingWrite& p : tile.state.pending) p.firstPrepared = CpuPendingWrite::kNotSetUp;
+  tile.prepared.triangles.used = 0;
+  tile.prepared.quads.used = 0;
 }
 
 // Draws every write pending in block `b` there.
-void drawBlockPending(CpuTileState& state, const CpuScene& scene, std::size_t b,
-                      CpuTileWork& work) {
-  for (const std::uint32_t i : state.pendingIn[b])
-    drawPending(state, scene, state.pending[i], BlockMask{1} << b, work);
-  emptyBlock(state, b);
+void drawBlockPending(TileAt tile, const CpuScene& scene, std::size_t b, CpuTileWork& work) {
+  for (const std::uint32_t i : tile.state.pendingIn[b])
+    drawPending(tile, scene, tile.state.pending[i], BlockMask{1} << b, work);
+  emptyBlock(tile.state, b);
 }
 
 // A write made pending in its blocks; a block with `mostInBlock` pending has them drawn instead,
 // which leaves the same depths.
-void addPending(CpuTileState& state, const CpuScene& scene, const CpuPendingWrite& write,
+void addPending(TileAt tile, const CpuScene& scene, const CpuPendingWrite& write,
                 std::size_t mostInBlock, CpuTileWork& work) {
+  CpuTileState& state = tile.state;
   const auto index = static_cast<std::uint32_t>(state.pending.size());
   state.pending.push_back(write);
   for (BlockMask m = write.remaining; m != 0; m &= m - 1) {
@@ -155,7 +177,7 @@ void addPending(CpuTileState& state, const CpuScene& scene, const CpuPendingWrit
   state.pendingBlocks |= write.remaining;
   for (BlockMask m = write.remaining; m != 0; m &= m - 1) {
     const auto b = static_cast<std::size_t>(std::countr_zero(m));
-    if (state.pendingIn[b].size() >= mostInBlock) drawBlockPending(state, scene, b, work);
+    if (state.pendingIn[b].size() >= mostInBlock) drawBlockPending(tile, scene, b, work);
   }
 }
 
@@ -217,7 +239,7 @@ bool testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass
 // A test drawing the pending writes of its tile it may read where its pieces reach, block by
 // block (PendingBlocks::resolve).
 struct TestResolution {
-  CpuTileState& state;
+  TileAt tile;
   const CpuScene& scene;
   const CpuItem& item;
   bool orderIndependent;
@@ -226,7 +248,7 @@ struct TestResolution {
 };
 bool resolveForTest(void* context, std::size_t block, float zHi) {
   auto& t = *static_cast<TestResolution*>(context);
-  CpuTileState& state = t.state;
+  CpuTileState& state = t.tile.state;
   const BlockMask bit = BlockMask{1} << block;
   auto& list = state.pendingIn[block];
   bool left = false;
@@ -241,7 +263,7 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
       nearest = std::min(nearest, p.kLo);
       continue;
     }
-    drawPending(state, t.scene, p, bit, t.work);
+    drawPending(t.tile, t.scene, p, bit, t.work);
     t.drew = true;
   }
   list.resize(kept);
@@ -262,8 +284,8 @@ bool answered(const CpuItem& item, CpuAnswers answers) {
 // lie behind the new pass' whole range, no test of it can find them in front and every write of
 // it overwrites them, so they are dropped; otherwise they are drawn now, in order, before
 // anything of the new pass.
-void enterPass(CpuTileState& state, const CpuScene& scene, const RasterPass& raster,
-               CpuTileWork& work) {
+void enterPass(TileAt tile, const CpuScene& scene, const RasterPass& raster, CpuTileWork& work) {
+  CpuTileState& state = tile.state;
   if (state.sign == raster.sign) return;
   if (state.sign != 0.f) {
     bool behind = true;
@@ -274,8 +296,8 @@ void enterPass(CpuTileState& state, const CpuScene& scene, const RasterPass& ras
       const float nearest = raster.sign > 0 ? vLo : -vHi;
       behind = behind && nearest > raster.keyHi;
     }
-    if (!behind) drawAllPending(state, scene, work);
-    clearPending(state);
+    if (!behind) drawAllPending(tile, scene, work);
+    clearPending(tile);
   }
   state.sign = raster.sign;
 }
@@ -304,12 +326,13 @@ void startTile(CpuTileState& state, const CpuChain& chain, std::uint32_t tile, f
 
 void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
                   std::uint32_t chain, std::uint32_t tile, const CpuEvaluation& evaluation,
-                  CpuAnswers answers, CpuTileWork& work) {
+                  CpuAnswers answers, CpuPreparedScratch& prepared, CpuTileWork& work) {
+  const TileAt at{state, prepared};
   const PixelRect inTile = tileRect(state.depth);
   for (const std::uint32_t i : run.bins.chains[chain].itemsOf(tile)) {
     const CpuItem& item = run.bins.items[i];
     const RasterPass& raster = run.recording.passes[item.pass].raster;
-    enterPass(state, scene, raster, work);
+    enterPass(at, scene, raster, work);
     if (!item.test) {
       ++work.writes;
       if (!evaluation.demandDriven) {
@@ -323,12 +346,12 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       // A pending write keeps its prepared pieces: a tile with this many (thousands of node boxes
       // in one tile at a low resolution) has them drawn instead, which leaves the same depths.
       if (state.pending.size() >= evaluation.mostPendingInTile) {
-        drawAllPending(state, scene, work);
-        clearPending(state);
+        drawAllPending(at, scene, work);
+        clearPending(at);
       }
-      addPending(state, scene, {blocks, item.kLo, item.kHi, item.object, &run, i},
+      addPending(at, scene, {blocks, item.kLo, item.kHi, item.object, &run, i},
                  evaluation.mostPendingInBlock, work);
-      if (state.pendingBlocks == 0) clearPending(state);
+      if (state.pendingBlocks == 0) clearPending(at);
       continue;
     }
     ++work.tests;
@@ -364,13 +387,14 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     PendingBlocks unresolved;
     unresolved.blocks = reading;
     unresolved.read = reading;
-    TestResolution resolution{state, scene, item, raster.orderIndependent, work};
+    TestResolution resolution{at, scene, item, raster.orderIndependent, work};
     unresolved.resolve = resolveForTest;
     unresolved.context = &resolution;
     testPieces(state.depth, pieces, raster, item, visible, answers, work, &unresolved);
     if (resolution.drew) ++work.testsAfterResolving;
-    if (state.pendingBlocks == 0) clearPending(state);
+    if (state.pendingBlocks == 0) clearPending(at);
   }
+  releasePrepared(at);
 }
 
 void rasteriseWrites(CpuTileState& state, const CpuScene& scene, const CpuRun& run,

@@ -64,11 +64,12 @@ struct CpuPendingWrite {
   std::uint32_t object = 0;
   const CpuRun* run = nullptr;
   std::uint32_t item = 0;
-  // Its pieces prepared in CpuTileState::preparedTriangles (or preparedQuads), once a test needed
-  // some of its blocks.
+  // Its pieces prepared in the evaluating thread's CpuPreparedScratch (triangles or quads), once a
+  // test needed some of its blocks; set up again when a later fetch goes on in the tile.
   std::uint32_t firstPrepared = kNotSetUp;
   std::uint32_t preparedCount = 0;
   bool quads = false;
+  bool counted = false;  // in CpuTileWork::writesRasterised
 };
 
 // Prepared pieces of a tile's pending writes: storage that only grows (a prepared write is set up
@@ -82,6 +83,14 @@ struct CpuPreparedPieces {
     if (storage.size() < used + count) storage.resize(std::max(used + count, 2 * storage.size()));
     return storage.data() + used;
   }
+};
+
+// The prepared pieces of the tile a thread evaluates: one storage per thread, reused tile after
+// tile, so it stays in cache and is allocated once (one per tile held ~1 GB on env2 at 800 px,
+// each tile's first use of it a page fault).
+struct CpuPreparedScratch {
+  CpuPreparedPieces<ScreenTriangle> triangles;
+  CpuPreparedPieces<ScreenQuad> quads;
 };
 
 // A tile of a chain's depth buffer: the depths resolved so far and the writes still pending.
@@ -99,8 +108,6 @@ struct CpuTileState {
     return none;
   }();
   BlockMask pendingBlocks = 0;  // blocks with a write pending
-  CpuPreparedPieces<ScreenTriangle> preparedTriangles;
-  CpuPreparedPieces<ScreenQuad> preparedQuads;
   float sign = 0.f;         // the key order of the pass of its last item (0: none yet)
   std::uint64_t chain = 0;  // which chain's tile it holds (0: none)
 };
@@ -139,10 +146,10 @@ void startTile(CpuTileState& state, const CpuChain& chain, std::uint32_t tile, f
                std::uint64_t chainId);
 
 // Walks the items chain `chain` of `run` binned to tile `tile`, on `state` (that tile of the
-// chain's buffer).
+// chain's buffer), preparing pieces into `prepared` (emptied again at the end).
 void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
                   std::uint32_t chain, std::uint32_t tile, const CpuEvaluation& evaluation,
-                  CpuAnswers answers, CpuTileWork& work);
+                  CpuAnswers answers, CpuPreparedScratch& prepared, CpuTileWork& work);
 
 // Rasterises every write of `items` (of `run`) into `state`, in order: the plain evaluation of
 // what a tile stores.
