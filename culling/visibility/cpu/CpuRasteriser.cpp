@@ -579,13 +579,39 @@ std::size_t TestQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pas
   return testAny(buffer, pass, quads, count, object, work, pending);
 }
 
+// A test triangle against what the buffer holds, then, visible there, again in the blocks of
+// pending->read, resolving them: both steps share one set-up.
+template <bool kOthers>
+HWY_INLINE bool testInTwoSteps(CpuDepthBuffer& buffer, const RasterPass& pass,
+                               const ScreenTriangle& t, const Writer& writer, RasterWork& work,
+                               PendingBlocks* pending) {
+  TriangleRaster r;
+  if (!setupBounds(t, pass, RasterRole::Test, r)) return false;
+  const bool small = smallBox(pass, r);
+  bool coverage = false;
+  if (small) {
+    if (drawSmall<kTest, kOthers>(buffer, pass, r, kAllBlocks, writer, work)) return true;
+  } else if (!decidedByBlocks<kTest>(buffer, pass, r, kAllBlocks)) {
+    setupCoverage(t, pass, RasterRole::Test, r);
+    coverage = true;
+    if (drawBlocks<kTest, kOthers>(buffer, pass, r, kAllBlocks, writer, work)) return true;
+  }
+  const BlockMask mask = pending->read;
+  if (small) return drawSmall<kTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
+  if (decidedByBlocks<kTest>(buffer, pass, r, mask, pending)) return false;
+  if (!coverage) setupCoverage(t, pass, RasterRole::Test, r);
+  return drawBlocks<kTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
+}
+
 template <bool kOthers>
 void testEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
               std::size_t count, std::uint8_t* fullyVisible, const Writer& writer, RasterWork& work,
               PendingBlocks* pending) {
   for (std::size_t i = 0; i < count; ++i)
     if (fullyVisible[i] &&
-        drawPiece<kTest, kOthers>(buffer, pass, triangles[i], writer, work, pending))
+        (pending != nullptr
+             ? testInTwoSteps<kOthers>(buffer, pass, triangles[i], writer, work, pending)
+             : drawPiece<kTest, kOthers>(buffer, pass, triangles[i], writer, work)))
       fullyVisible[i] = 0;
 }
 void TestEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,

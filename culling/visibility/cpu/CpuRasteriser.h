@@ -55,7 +55,8 @@ struct PendingBlocks {
     RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject,
     PendingBlocks* pending = nullptr);
 // Tests each triangle as its own piece: fullyVisible[i] = 0 where triangle i has an occluded
-// sample; triangles whose entry is already 0 are not tested.
+// sample; triangles whose entry is already 0 are not tested. With `pending`, each is tested
+// against what the buffer holds first and, visible there, in the blocks of pending->read.
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
                       RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject,

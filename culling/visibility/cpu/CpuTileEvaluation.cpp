@@ -382,8 +382,11 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     }
     // Against what the tile holds first: occluded there, the pending writes stay pending. Visible
     // there, the blocks with pending writes it may read are tested again, each once the writes
-    // that can lie in front of the test's piece are drawn there, until a piece is occluded.
-    if (!testPieces(state.depth, pieces, raster, item, visible, answers, work)) continue;
+    // that can lie in front of the test's piece are drawn there, until a piece is occluded. (A
+    // batch's triangles take both steps one triangle at a time: testEachTriangle.)
+    if (!answersEachTriangle(item, pieces) &&
+        !testPieces(state.depth, pieces, raster, item, visible, answers, work))
+      continue;
     PendingBlocks unresolved;
     unresolved.blocks = reading;
     unresolved.read = reading;
