@@ -46,7 +46,8 @@ struct CpuEvaluation {
   // Writes left pending in one block, and in one tile, before those are drawn (a test scans the
   // writes pending in its blocks, and a pending write keeps its prepared pieces). On env2 at
   // 800 px cullide wrote 1.60M pixels at 1,024 a block, 1.92M at 512 and 2.77M at 256; without the
-  // tile's limit a run's peak memory was 2.2 GB, 1.3 GB with 4,096.
+  // tile's limit a run's peak memory was 2.2 GB, 1.3 GB with 4,096 (with the prepared pieces in
+  // one storage per tile; one per thread since, CpuPreparedScratch: 172 MB).
   std::size_t mostPendingInBlock = 1024;
   std::size_t mostPendingInTile = 4096;
 };
