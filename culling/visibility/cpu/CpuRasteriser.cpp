@@ -464,20 +464,31 @@ bool decidedByBlocks(const CpuDepthBuffer& buffer, const RasterPass& pass, const
   return true;
 }
 
+// A piece whose bounds are set up (setupBounds) drawn in the blocks of `mask`: small, decided by
+// the blocks, or set up whole (`coverage` says whether it is already) and drawn.
+template <bool kIsTest, bool kOthers, class Piece>
+HWY_INLINE bool drawSetUp(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
+                          TriangleRaster& r, bool& coverage, BlockMask mask, const Writer& writer,
+                          RasterWork& work, PendingBlocks* pending) {
+  if (smallBox(pass, r))
+    return drawSmall<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
+  if (decidedByBlocks<kIsTest>(buffer, pass, r, mask, pending)) return false;
+  if (!coverage) setupCoverage(t, pass, kIsTest ? RasterRole::Test : RasterRole::Write, r);
+  coverage = true;
+  return drawBlocks<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
+}
+
 // One piece (a triangle, or a quad) tested or written: true when a test finds an occluded sample.
 template <bool kIsTest, bool kOthers, class Piece>
 HWY_INLINE bool drawPiece(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
                           const Writer& writer, RasterWork& work,
                           PendingBlocks* pending = nullptr) {
-  constexpr RasterRole role = kIsTest ? RasterRole::Test : RasterRole::Write;
   TriangleRaster r;
-  if (!setupBounds(t, pass, role, r)) return false;
-  const BlockMask mask = pending != nullptr ? pending->read : kAllBlocks;
-  if (smallBox(pass, r))
-    return drawSmall<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
-  if (decidedByBlocks<kIsTest>(buffer, pass, r, mask, pending)) return false;
-  setupCoverage(t, pass, role, r);
-  return drawBlocks<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
+  if (!setupBounds(t, pass, kIsTest ? RasterRole::Test : RasterRole::Write, r)) return false;
+  bool coverage = false;
+  return drawSetUp<kIsTest, kOthers>(buffer, pass, t, r, coverage,
+                                     pending != nullptr ? pending->read : kAllBlocks, writer, work,
+                                     pending);
 }
 
 // Pieces prepared to be written later, block by block: those with a pixel in the window.
@@ -587,20 +598,11 @@ HWY_INLINE bool testInTwoSteps(CpuDepthBuffer& buffer, const RasterPass& pass,
                                PendingBlocks* pending) {
   TriangleRaster r;
   if (!setupBounds(t, pass, RasterRole::Test, r)) return false;
-  const bool small = smallBox(pass, r);
   bool coverage = false;
-  if (small) {
-    if (drawSmall<kTest, kOthers>(buffer, pass, r, kAllBlocks, writer, work)) return true;
-  } else if (!decidedByBlocks<kTest>(buffer, pass, r, kAllBlocks)) {
-    setupCoverage(t, pass, RasterRole::Test, r);
-    coverage = true;
-    if (drawBlocks<kTest, kOthers>(buffer, pass, r, kAllBlocks, writer, work)) return true;
-  }
-  const BlockMask mask = pending->read;
-  if (small) return drawSmall<kTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
-  if (decidedByBlocks<kTest>(buffer, pass, r, mask, pending)) return false;
-  if (!coverage) setupCoverage(t, pass, RasterRole::Test, r);
-  return drawBlocks<kTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
+  return drawSetUp<kTest, kOthers>(buffer, pass, t, r, coverage, kAllBlocks, writer, work,
+                                   nullptr) ||
+         drawSetUp<kTest, kOthers>(buffer, pass, t, r, coverage, pending->read, writer, work,
+                                   pending);
 }
 
 template <bool kOthers>

@@ -142,8 +142,7 @@ void clearPending(CpuTileState& state) {
 // No write pending any more, nor their prepared pieces.
 void clearPending(TileAt tile) {
   clearPending(tile.state);
-  tile.prepared.triangles.used = 0;
-  tile.prepared.quads.used = 0;
+  tile.prepared.clear();
 }
 
 // The end of a tile's evaluation: the writes left pending give their prepared pieces back (a
@@ -151,8 +150,7 @@ void clearPending(TileAt tile) {
 // tile.
 void releasePrepared(TileAt tile) {
   for (CpuPendingWrite& p : tile.state.pending) p.firstPrepared = CpuPendingWrite::kNotSetUp;
-  tile.prepared.triangles.used = 0;
-  tile.prepared.quads.used = 0;
+  tile.prepared.clear();
 }
 
 // Draws every write pending in block `b` there.
