@@ -71,7 +71,6 @@ class CpuDepthBuffer {
 
   // The planes of an order-independent pass (othersPlanes): per pixel of a non-uniform block the
   // object that wrote its value, and the nearest value any other object wrote.
-  [[nodiscard]] bool hasOthersPlanes() const { return others_; }
   [[nodiscard]] std::uint32_t* objects(std::size_t index) {
     return objects_.data() + index * kBlockPixels;
   }

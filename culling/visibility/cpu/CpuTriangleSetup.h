@@ -343,13 +343,4 @@ CDB_RASTER_INLINE void setupCoverage(const Piece& t, const RasterPass& pass, Ras
   }
 }
 
-// Both steps.
-template <class Piece>
-CDB_RASTER_INLINE bool setupTriangle(const Piece& t, const RasterPass& pass, RasterRole role,
-                                     TriangleRaster& r) {
-  if (!setupBounds(t, pass, role, r)) return false;
-  setupCoverage(t, pass, role, r);
-  return true;
-}
-
 }  // namespace cdb
