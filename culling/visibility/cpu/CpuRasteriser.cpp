@@ -10,6 +10,8 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <type_traits>
 
 HWY_BEFORE_NAMESPACE();
 namespace cdb {
@@ -481,14 +483,12 @@ HWY_INLINE bool drawSetUp(CpuDepthBuffer& buffer, const RasterPass& pass, const 
 // One piece (a triangle, or a quad) tested or written: true when a test finds an occluded sample.
 template <bool kIsTest, bool kOthers, class Piece>
 HWY_INLINE bool drawPiece(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
-                          const Writer& writer, RasterWork& work,
-                          PendingBlocks* pending = nullptr) {
+                          const Writer& writer, RasterWork& work) {
   TriangleRaster r;
   if (!setupBounds(t, pass, kIsTest ? RasterRole::Test : RasterRole::Write, r)) return false;
   bool coverage = false;
-  return drawSetUp<kIsTest, kOthers>(buffer, pass, t, r, coverage,
-                                     pending != nullptr ? pending->read : kAllBlocks, writer, work,
-                                     pending);
+  return drawSetUp<kIsTest, kOthers>(buffer, pass, t, r, coverage, kAllBlocks, writer, work,
+                                     nullptr);
 }
 
 // Pieces prepared to be written later, block by block: those with a pixel in the window.
@@ -562,12 +562,51 @@ void WritePreparedQuads(CpuDepthBuffer& buffer, const RasterPass& pass,
   writePreparedAny(buffer, pass, writes, count, mask, object, work);
 }
 
+// The pieces tested in order as one piece, up to the first with an occluded sample. With
+// `pending`, in two rounds that share each piece's set-up (a chunk's worth kept): every piece
+// against what the buffer holds, then, all visible there, every piece again in the blocks of
+// pending->read, resolving them (one occluded in the first round leaves the pending writes
+// undrawn).
 template <bool kOthers, class Piece>
 std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
                               std::size_t count, const Writer& writer, RasterWork& work,
                               PendingBlocks* pending) {
-  for (std::size_t i = 0; i < count; ++i)
-    if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work, pending)) return i;
+  if (pending == nullptr) {
+    for (std::size_t i = 0; i < count; ++i)
+      if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work)) return i;
+    return count;
+  }
+  constexpr std::size_t kKept = std::is_same_v<Piece, ScreenQuad> ? 6 : 64;
+  // Uninitialised: set-ups are written before they are read.
+  alignas(TriangleRaster) unsigned char storage[kKept * sizeof(TriangleRaster)];
+  auto* kept = reinterpret_cast<TriangleRaster*>(storage);
+  bool setUp[kKept], coverage[kKept];
+  for (std::size_t i = 0; i < count; ++i) {
+    if (i >= kKept) {
+      if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work)) return i;
+      continue;
+    }
+    TriangleRaster& r = *std::construct_at(kept + i);
+    setUp[i] = setupBounds(pieces[i], pass, RasterRole::Test, r);
+    coverage[i] = false;
+    if (setUp[i] && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], r, coverage[i], kAllBlocks,
+                                              writer, work, nullptr))
+      return i;
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    if (i < kKept) {
+      if (setUp[i] && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], kept[i], coverage[i],
+                                                pending->read, writer, work, pending))
+        return i;
+      continue;
+    }
+    TriangleRaster r;
+    bool setUpCoverage = false;
+    if (setupBounds(pieces[i], pass, RasterRole::Test, r) &&
+        drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], r, setUpCoverage, pending->read,
+                                  writer, work, pending))
+      return i;
+  }
   return count;
 }
 template <class Piece>

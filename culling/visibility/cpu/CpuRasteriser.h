@@ -50,6 +50,8 @@ struct PendingBlocks {
 
 // Tests the triangles in order as one piece; returns the index of the first with an occluded
 // sample (at or behind the stored depth), or triangles.size() when the piece is fully visible.
+// With `pending`, every triangle against what the buffer holds first and, all visible there,
+// every one again in the blocks of pending->read.
 [[nodiscard]] std::size_t testTrianglesUntilOccluded(
     CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenTriangle> triangles,
     RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject,

@@ -167,14 +167,12 @@ void addPending(TileAt tile, const CpuScene& scene, const CpuPendingWrite& write
   CpuTileState& state = tile.state;
   const auto index = static_cast<std::uint32_t>(state.pending.size());
   state.pending.push_back(write);
+  state.pendingBlocks |= write.remaining;
+  // (Drawing a full block touches that block's depths and list only.)
   for (BlockMask m = write.remaining; m != 0; m &= m - 1) {
     const auto b = static_cast<std::size_t>(std::countr_zero(m));
     state.pendingIn[b].push_back(index);
     state.pendingNearest[b] = std::min(state.pendingNearest[b], write.kLo);
-  }
-  state.pendingBlocks |= write.remaining;
-  for (BlockMask m = write.remaining; m != 0; m &= m - 1) {
-    const auto b = static_cast<std::size_t>(std::countr_zero(m));
     if (state.pendingIn[b].size() >= mostInBlock) drawBlockPending(tile, scene, b, work);
   }
 }
@@ -207,22 +205,19 @@ bool answersEachTriangle(const CpuItem& item, const CpuPieces& pieces) {
   return item.answerEach && !pieces.areQuads && item.count > 1;
 }
 
-// Tests an item's pieces against what the tile holds (with `pending`: drawing the pending writes
-// it may read first, block by block); clears the answers it finds occluded and returns whether any
-// of its answers is still visible.
-bool testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
+// Tests an item's pieces against what the tile holds (with `pending`: then again where pending
+// writes it may read are, drawing those first, block by block) and clears the answers it finds
+// occluded.
+void testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
                 const CpuItem& item, std::uint8_t* visible, CpuAnswers answers, CpuTileWork& work,
                 PendingBlocks* pending = nullptr) {
   if (answersEachTriangle(item, pieces)) {
     // One answer per triangle.
     testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster,
                      item.object, pending);
-    bool any = false;
-    for (std::size_t i = 0; i < pieces.count; ++i) {
+    for (std::size_t i = 0; i < pieces.count; ++i)
       if (!visible[i]) answers.occlude(item.answer + pieces.offset[i]);
-      any = any || visible[i];
-    }
-    return any;
+    return;
   }
   const bool occluded =
       pieces.areQuads
@@ -231,7 +226,6 @@ bool testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass
           : testTrianglesUntilOccluded(depth, raster, {pieces.triangles.data(), pieces.count},
                                        work.raster, item.object, pending) < pieces.count;
   if (occluded) answers.occlude(item.answer);
-  return !occluded;
 }
 
 // A test drawing the pending writes of its tile it may read where its pieces reach, block by
@@ -380,11 +374,8 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     }
     // Against what the tile holds first: occluded there, the pending writes stay pending. Visible
     // there, the blocks with pending writes it may read are tested again, each once the writes
-    // that can lie in front of the test's piece are drawn there, until a piece is occluded. (A
-    // batch's triangles take both steps one triangle at a time: testEachTriangle.)
-    if (!answersEachTriangle(item, pieces) &&
-        !testPieces(state.depth, pieces, raster, item, visible, answers, work))
-      continue;
+    // that can lie in front of the test's piece are drawn there, until a piece is occluded. (The
+    // two steps share each piece's set-up; a batch's triangles take both one triangle at a time.)
     PendingBlocks unresolved;
     unresolved.blocks = reading;
     unresolved.read = reading;
