@@ -480,15 +480,16 @@ HWY_INLINE bool drawSetUp(CpuDepthBuffer& buffer, const RasterPass& pass, const 
   return drawBlocks<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
 }
 
-// One piece (a triangle, or a quad) tested or written: true when a test finds an occluded sample.
+// One piece (a triangle, or a quad) tested or written in the blocks of `mask`: true when a test
+// finds an occluded sample.
 template <bool kIsTest, bool kOthers, class Piece>
 HWY_INLINE bool drawPiece(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
-                          const Writer& writer, RasterWork& work) {
+                          const Writer& writer, RasterWork& work, BlockMask mask = kAllBlocks,
+                          PendingBlocks* pending = nullptr) {
   TriangleRaster r;
   if (!setupBounds(t, pass, kIsTest ? RasterRole::Test : RasterRole::Write, r)) return false;
   bool coverage = false;
-  return drawSetUp<kIsTest, kOthers>(buffer, pass, t, r, coverage, kAllBlocks, writer, work,
-                                     nullptr);
+  return drawSetUp<kIsTest, kOthers>(buffer, pass, t, r, coverage, mask, writer, work, pending);
 }
 
 // Pieces prepared to be written later, block by block: those with a pixel in the window.
@@ -594,17 +595,14 @@ std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, co
       return i;
   }
   for (std::size_t i = 0; i < count; ++i) {
-    if (i < kKept) {
-      if (setUp[i] && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], kept[i], coverage[i],
-                                                pending->read, writer, work, pending))
+    if (i >= kKept) {
+      if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work, pending->read,
+                                    pending))
         return i;
       continue;
     }
-    TriangleRaster r;
-    bool setUpCoverage = false;
-    if (setupBounds(pieces[i], pass, RasterRole::Test, r) &&
-        drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], r, setUpCoverage, pending->read,
-                                  writer, work, pending))
+    if (setUp[i] && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], kept[i], coverage[i],
+                                              pending->read, writer, work, pending))
       return i;
   }
   return count;
