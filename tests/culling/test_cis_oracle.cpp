@@ -12,6 +12,7 @@
 #include "culling/SortedIntervals.h"
 #include "culling/strategies/CollisionIndependentSets.h"
 #include "culling/visibility/ScriptedVisibilityOracle.h"
+#include "tests/common/RandomCases.h"
 
 namespace cdb {
 namespace {
@@ -158,7 +159,7 @@ TEST(CisOracle, ViewAxisIsWhereTheCentresSpreadMostUnlessFixed) {
 // are disjoint and have two members or more. The second frame moves the boxes a little.
 TEST(CisOracle, NeverSplitsOrDropsATouchingPairOnRandomBoxes) {
   std::size_t touching = 0, severalSets = 0, dropped = 0;
-  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+  for (std::uint64_t seed = 1; seed <= test::randomCases(10u); ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     const std::vector<Aabb> boxes = testing::randomBoxes(rng, 24, 5.0);

@@ -16,6 +16,7 @@
 #include "culling/strategies/QuickCullide.h"
 #include "culling/visibility/ScriptedVisibilityOracle.h"
 #include "scenes/ProceduralMeshes.h"
+#include "tests/common/RandomCases.h"
 
 namespace cdb {
 namespace {
@@ -212,7 +213,7 @@ std::map<ObjectPair, SideTriangles> listedTriangles(const CullingResult& r, cons
 TEST(QuickCullideOracle, NoFreedPairEverTouchesOnRandomBoxes) {
   std::size_t touching = 0;
   std::uint64_t listedPairs = 0, cullidePairs = 0, truthPairs = 0;
-  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+  for (std::uint64_t seed = 1; seed <= test::randomCases(10u); ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     const std::vector<Aabb> boxes = testing::randomBoxes(rng, 14, 4.0);

@@ -12,6 +12,7 @@
 #include "culling/strategies/Cullide.h"
 #include "culling/strategies/DepthSortedCulling.h"
 #include "culling/visibility/ScriptedVisibilityOracle.h"
+#include "tests/common/RandomCases.h"
 
 namespace cdb {
 namespace {
@@ -220,7 +221,7 @@ TEST(SortedOracle, WorstCaseOfCullideIsPrunedEntirelyAlongEveryAxis) {
 // contact of the exact phase can be lost; the second frame re-sorts incrementally.
 TEST(SortedOracle, KeepsEveryTouchingPairOfTrianglesOnRandomBoxes) {
   std::size_t touching = 0;
-  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+  for (std::uint64_t seed = 1; seed <= test::randomCases(6u); ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     const std::vector<Aabb> boxes = testing::randomBoxes(rng, 14, 4.0);

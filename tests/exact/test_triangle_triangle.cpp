@@ -10,6 +10,7 @@
 #include "ExactReference.h"
 #include "culling/exact/OrientationPredicates.h"
 #include "culling/exact/TriangleTriangle.h"
+#include "tests/common/RandomCases.h"
 
 namespace cdb {
 namespace {
@@ -168,7 +169,7 @@ TEST_P(TriangleTriangleRandom, AgreesWithRationalSeparatingAxes) {
   const double scales[] = {1.0, 0.1, 1e-7, 1e5};
   const double shifts[] = {0.0, 1.0 / 3.0, -1234.5678};
   int intersecting = 0, degenerate = 0;
-  const int trials = 6000;
+  const int trials = test::randomCases(6000);
   for (int trial = 0; trial < trials; ++trial) {
     const double scale = scales[trial % 4], shift = shifts[(trial / 4) % 3];
     const auto point = [&] { return V(draw(rng, grid) * scale + V::Constant(shift)); };
@@ -193,7 +194,7 @@ TEST_P(TriangleTriangleRandom, AgreesNearAPlaneWhereRoundingDecides) {
   std::mt19937_64 rng(GetParam() + 1000);
   std::uniform_real_distribution<double> u(-1.0, 1.0), w(0.05, 0.45);
   int intersecting = 0, roundedWrong = 0;
-  const int trials = 3000;
+  const int trials = test::randomCases(3000);
   for (int trial = 0; trial < trials; ++trial) {
     const double magnitude = trial % 2 == 0 ? 0.0 : 1000.0;
     const V offset = draw(rng, u) * magnitude;

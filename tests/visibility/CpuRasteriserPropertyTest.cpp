@@ -19,6 +19,7 @@
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
 #include "culling/visibility/cpu/CpuRasteriser.h"
 #include "culling/visibility/cpu/CpuTriangleSetup.h"
+#include "tests/common/RandomCases.h"
 
 namespace cdb {
 namespace {
@@ -338,7 +339,7 @@ class CpuRasteriserProperty : public testing::TestWithParam<int> {
         Maker maker(seedFactor * resolution + static_cast<unsigned>(s.shape) +
                     (sign < 0 ? 7u : 0u));
         Tally tally;
-        for (int i = 0; i < s.count; ++i) {
+        for (int i = 0; i < test::randomCases(s.count); ++i) {
           checkPiece(maker.make(s.shape, resolution), resolution, sign, tally);
           if (HasFatalFailure()) {
             ADD_FAILURE() << s.name << " " << piece << " " << i << ", sign " << sign;
