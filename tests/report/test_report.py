@@ -1,7 +1,9 @@
 """scripts/report.py on a tiny synthetic result folder with known numbers (env1 and env3; env2 absent)."""
 
+import contextlib
 import csv
 import gzip
+import io
 import json
 import os
 import shutil
@@ -10,6 +12,7 @@ import subprocess
 import sys
 import tempfile
 import unittest
+import warnings
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -18,7 +21,7 @@ PACK = ROOT / "scripts" / "pack-results.sh"
 THESIS = ROOT / "results" / "thesis" / "tables.csv"
 
 sys.path.insert(0, str(ROOT / "scripts"))
-from report import runs, statistics  # noqa: E402
+from report import cli as report_cli, runs, statistics  # noqa: E402
 
 FRAME_HEADER = [name for name, _ in runs.FRAME_COLUMNS]
 RENDERER = "llvmpipe (LLVM 15.0.6, 256 bits)"
@@ -79,9 +82,25 @@ def env3_rows():
             for s, bases in ENV3_BASE.items() for n, base in bases.items() for frame in range(3)]
 
 
-def run_report(result_dir, *options):
+def run_report_script(result_dir, *options):
+    """scripts/report.py run as its own process, as a user runs it."""
     return subprocess.run([sys.executable, str(REPORT), str(result_dir), "--thesis", str(THESIS), *options],
                           capture_output=True, text=True, timeout=300)
+
+
+def run_report(result_dir, *options):
+    """The report's main (what scripts/report.py calls) in this process, its output captured as a process'
+    would be: the tests import matplotlib once, not once a run (0.6 s each). Python warnings are shown
+    again in every run, as in a fresh process."""
+    args = [str(result_dir), "--thesis", str(THESIS), *options]
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), warnings.catch_warnings():
+        warnings.simplefilter("default")
+        try:
+            code = report_cli.main(args)
+        except SystemExit as e:
+            code = e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
+    return subprocess.CompletedProcess([str(REPORT), *args], code, out.getvalue(), err.getvalue())
 
 
 def read_csv_rows(path):
@@ -700,7 +719,7 @@ class ReportOnARealRun(InFreshResultDir):
         self.assertEqual(made.returncode, 0, made.stderr)
         for name in ("cullide", "ours", "fcl"):
             self.assertRegex(made.stdout, rf"\n{name} +[0-9]+\.[0-9]{{2}} +0\n")
-        result = run_report(self.dir)
+        result = run_report_script(self.dir)
         self.assertEqual(result.returncode, 0, result.stderr)
         md = (self.dir / "comparison.md").read_text()
         for row in ("| cullide | ", "| ours | ", "| fcl (not in the thesis) | ", "| ours / fcl, average | "):
