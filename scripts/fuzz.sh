@@ -13,8 +13,7 @@ targets=("$@")
 ((${#targets[@]})) || targets=(config mesh recording)
 jobs=${CDBENCH_JOBS:-$(nproc)}
 
-cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz -j "$jobs"
+CDBENCH_BUILD_TARGETS= bash scripts/build.sh fuzz
 
 # fuzz_one TARGET: runs one target; its messages go to build-fuzz/fuzz_TARGET.summary.
 fuzz_one() {

@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config git
+  build-essential cmake ninja-build pkg-config git
   libode-dev libeigen3-dev libassimp-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgmp-dev
   libegl-dev libgl-dev libegl1 libegl-mesa0 libgl1-mesa-dri
   libfcl-dev libbullet-dev
