@@ -58,7 +58,7 @@ MergeSummary mergeRuns(const std::filesystem::path& outDir,
   meta["shards"] = shards;
   if (!shards.empty() && shards.front().is_object()) {
     meta["machine"] = shards.front().value("machine", nlohmann::json::object());
-    for (const char* key : {"gl", "visibility"})
+    for (const char* key : {"gl", "visibility", "assets"})
       if (shards.front().contains(key)) meta[key] = shards.front()[key];
   }
   meta["config"] = {{"path", identity.configPath}, {"environment", identity.environment},

@@ -10,7 +10,8 @@ namespace cdb {
 
 nlohmann::json shardMetaJson(const Shard& shard, const RunOptions& options,
                              const ScenarioConfig& config, const VisibilityBackend& backend,
-                             const BackendResources& resources, const WallTimeBreakdown& time) {
+                             const BackendResources& resources, const WallTimeBreakdown& time,
+                             const std::vector<AssetFile>& assets) {
   nlohmann::json j;
   j["shard"] = std::to_string(shard.index) + "/" + std::to_string(shard.count);
   j["created_utc"] = utcTimestamp();
@@ -27,6 +28,11 @@ nlohmann::json shardMetaJson(const Shard& shard, const RunOptions& options,
   // GL is opened only by backends that need it; a run on the CPU backend records none.
   if (const HeadlessGlContext* gl = resources.openedGl()) j["gl"] = toJson(gl->info());
   j["wall_time"] = time.toJson();
+  // Which copy of each mesh the asset path found: another copy can change the simulation.
+  j["assets"] = nlohmann::json::array();
+  for (const AssetFile& f : assets)
+    j["assets"].push_back(
+        {{"asset", f.asset}, {"path", f.path.string()}, {"bytes", f.bytes}, {"sha256", f.sha256}});
   return j;
 }
 
@@ -40,6 +46,7 @@ nlohmann::json runMetaJson(const nlohmann::json& shardMeta, const RunOptions& op
   meta["machine"] = shardMeta["machine"];
   meta["visibility"] = shardMeta["visibility"];
   if (shardMeta.contains("gl")) meta["gl"] = shardMeta["gl"];
+  if (shardMeta.contains("assets")) meta["assets"] = shardMeta["assets"];
   meta["shards"] = nlohmann::json::array({shardMeta});
   const VisibilitySpec& visibility = config.culling.visibility;
   meta["config"] = {{"path", options.configPath.string()},

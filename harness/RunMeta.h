@@ -14,15 +14,18 @@
 #include "harness/RunOptions.h"
 #include "harness/RunPlan.h"
 #include "harness/WallTimeBreakdown.h"
+#include "scenes/AssetFiles.h"
 #include "scenes/ScenarioConfig.h"
 
 namespace cdb {
 
+// `assets`: the files the config's asset meshes were loaded from (recorded under "assets").
 [[nodiscard]] nlohmann::json shardMetaJson(const Shard& shard, const RunOptions& options,
                                            const ScenarioConfig& config,
                                            const VisibilityBackend& backend,
                                            const BackendResources& resources,
-                                           const WallTimeBreakdown& time);
+                                           const WallTimeBreakdown& time,
+                                           const std::vector<AssetFile>& assets = {});
 
 // meta.json of a run whose every cell is on disk; `rows` are all of them, `cells` their count.
 [[nodiscard]] nlohmann::json runMetaJson(const nlohmann::json& shardMeta, const RunOptions& options,

@@ -25,6 +25,7 @@
 #include "harness/RunMeta.h"
 #include "harness/RunOutputs.h"
 #include "harness/RunPlan.h"
+#include "scenes/AssetFiles.h"
 #include "scenes/AssetPath.h"
 #include "scenes/ConfigLimits.h"
 #include "scenes/ConfigLoader.h"
@@ -290,7 +291,8 @@ RunSummary runScenario(const RunOptions& options) {
   summary.time.wallSeconds = msSince(runStart, Clock::now()) / 1e3;
 
   const nlohmann::json shardMeta =
-      shardMetaJson(shard, options, config, *backend, resources, summary.time);
+      shardMetaJson(shard, options, config, *backend, resources, summary.time,
+                    assetFiles(config, assetSearchPath(options.assetDirs)));
   writeFileAtomically(options.outDir /
                           ("shard-" + std::to_string(shard.index) + "-of-" +
                            std::to_string(shard.count) + ".json"),

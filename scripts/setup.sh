@@ -10,6 +10,7 @@ packages=(
   libfcl-dev libbullet-dev
   libhwy-dev libtbb-dev  # the CPU visibility backend: SIMD with runtime dispatch, worker threads
   libpng-dev libstb-dev python3-pil  # cdbench snapshot: PNG, legend glyphs, animated GIFs
+  libssl-dev  # SHA-256 of the mesh files a run loaded (meta.json)
   libgtest-dev libgmock-dev libbenchmark-dev
   libbenchmark-tools python3-scipy  # Google Benchmark's tools/compare.py (scripts/bench.sh)
   clang libclang-rt-14-dev  # the sanitizer tree and the fuzz targets

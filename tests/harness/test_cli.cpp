@@ -51,6 +51,9 @@ TEST(Cli, Env3RunWritesFramesAndMetaWithNoFalseNegatives) {
   EXPECT_FALSE(meta.contains("gl")) << "the cpu backend opens no GL";
   EXPECT_FALSE(meta["machine"]["git_commit"].get<std::string>().empty());
   EXPECT_EQ(meta["config"]["environment"], "env3");
+  // Tori are made, not loaded: no mesh file to name.
+  ASSERT_TRUE(meta["assets"].is_array());
+  EXPECT_TRUE(meta["assets"].empty());
   // The culling options in effect: env3's hierarchy reaches ours, its axis is chosen per frame.
   const auto& ours = meta["config"]["culling"]["strategies"]["ours"];
   EXPECT_EQ(ours["hierarchy"]["leaf_triangles"], 16);

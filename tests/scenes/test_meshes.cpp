@@ -11,6 +11,7 @@
 #include "ScratchDir.h"
 #include "TestAssets.h"
 #include "core/Errors.h"
+#include "scenes/AssetFiles.h"
 #include "scenes/AssetPath.h"
 #include "scenes/MeshLoader.h"
 #include "scenes/MeshMeasures.h"
@@ -284,6 +285,35 @@ TEST(AssetPath, FirstDirectoryWinsAndPlyBeforeObj) {
   EXPECT_EQ(resolveAsset("other", dirs), second.path() / "other.ply");
   EXPECT_EQ(resolveAsset("other.obj", dirs), second.path() / "other.obj");  // extension given
   EXPECT_EQ(resolveAsset((second.path() / "other.obj").string(), {}), second.path() / "other.obj");
+}
+
+// A run records which copy of each asset mesh it loaded: path, size and SHA-256 (FIPS 180-2's
+// example digests), each asset once, and a copy found earlier on the path is another file.
+TEST(AssetFiles, RecordTheFileEachAssetResolvedToWithItsSizeAndSha256) {
+  ScratchDir first, second;
+  second.write("shape.obj", "abc");
+  ScenarioConfig config;
+  BodyGroup torus, shape, again;
+  torus.mesh.kind = MeshSpec::Kind::Torus;
+  shape.mesh.kind = again.mesh.kind = MeshSpec::Kind::Asset;
+  shape.mesh.asset = again.mesh.asset = "shape";
+  config.bodies = {torus, shape, again};
+  const std::vector<std::string> dirs{first.path().string(), second.path().string()};
+  auto files = assetFiles(config, dirs);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].asset, "shape");
+  EXPECT_EQ(files[0].path, second.path() / "shape.obj");
+  EXPECT_EQ(files[0].bytes, 3u);
+  EXPECT_EQ(files[0].sha256, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+
+  first.write("shape.ply", "");
+  files = assetFiles(config, dirs);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].path, first.path() / "shape.ply");
+  EXPECT_EQ(files[0].bytes, 0u);
+  EXPECT_EQ(files[0].sha256, "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  config.bodies = {torus};
+  EXPECT_TRUE(assetFiles(config, dirs).empty());
 }
 
 TEST(AssetPath, MissingAssetSaysWhereItLookedAndHowToGetIt) {
