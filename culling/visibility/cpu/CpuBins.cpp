@@ -79,10 +79,10 @@ void boundItem(const ScreenExtent& e, const RasterPass& pass, CpuItem& item) {
 
 // A chunk item's bounds from the boxes of its parts (empty boxes: parts it does not have).
 void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3f> parts,
-                const RasterPass& pass, CpuItem& item) {
+                const RasterPass& pass, CpuItem& item, CpuItemParts& rects) {
   Eigen::AlignedBox3f all;
-  for (std::size_t p = 0; p < item.parts.size(); ++p) {
-    item.parts[p] = parts[p].isEmpty() ? PixelRect{} : pixelsOf(extentOf(toScreen, parts[p]), pass);
+  for (std::size_t p = 0; p < rects.size(); ++p) {
+    rects[p] = parts[p].isEmpty() ? PixelRect{} : pixelsOf(extentOf(toScreen, parts[p]), pass);
     all.extend(parts[p]);
   }
   if (all.isEmpty()) {
@@ -92,10 +92,10 @@ void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3
   boundItem(extentOf(toScreen, all), pass, item);
 }
 
-// Every item of command `ci`, at items[0 ..].
+// Every item of command `ci`, at items[0 ..]; a chunk item's parts at bins.parts[firstParts ..].
 void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
                std::span<const CpuMeshBounds> bounds, std::uint32_t ci, std::uint32_t pass,
-               CpuItem* items) {
+               CpuItem* items, CpuBins& bins, std::uint32_t firstParts) {
   const CpuCommand& c = recording.commands[ci];
   const RasterPass& raster = recording.passes[pass].raster;
   CpuItem base;
@@ -115,6 +115,7 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
         const std::uint32_t stop = std::min(end, (chunk + 1) * kChunkTriangles);
         CpuItem& item = items[n] = base;
         item.first = at, item.count = stop - at, item.answer = answerOf(at - c.first);
+        item.parts = firstParts + n;
         // Part p: the item's triangles [p, p + 1) * kPartTriangles (as chunkPieces reads them).
         for (std::size_t p = 0; p < kParts; ++p) {
           const std::uint32_t p0 = std::min<std::uint32_t>(stop, at + p * kPartTriangles);
@@ -127,7 +128,7 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
           else
             for (std::uint32_t t = p0; t < p1; ++t) parts[p].extend(mesh.triangles[t]);
         }
-        boundChunk(c.toScreen, parts, raster, item);
+        boundChunk(c.toScreen, parts, raster, item, bins.parts[item.parts]);
         at = stop;
       }
       return;
@@ -138,13 +139,14 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
         item.first = c.first + at;
         item.count = std::min(kChunkTriangles, c.count - at);
         item.answer = answerOf(at);
+        item.parts = firstParts + n;
         for (std::size_t p = 0; p < kParts; ++p) {
           parts[p] = {};
           const std::uint32_t p1 = std::min<std::uint32_t>(item.count, (p + 1) * kPartTriangles);
           for (std::uint32_t i = p * kPartTriangles; i < p1; ++i)
             parts[p].extend(mesh.triangles[recording.listed[item.first + i]]);
         }
-        boundChunk(c.toScreen, parts, raster, item);
+        boundChunk(c.toScreen, parts, raster, item, bins.parts[item.parts]);
       }
       return;
     }
@@ -174,13 +176,20 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, CpuChain& chai
   const std::uint32_t endCommand = recording.passes[chain.endPass - 1].endCommand;
   const std::uint32_t firstItem = bins.firstItem[firstCommand];
   const std::uint32_t endItem = bins.firstItem[endCommand];
-  const int size = chain.tileSize;
   const std::size_t tiles = static_cast<std::size_t>(chain.tilesX) * chain.tilesX;
   chain.offsets.assign(tiles + 1, 0);
+  // (A table, not a division per item and coordinate.)
+  if (chain.tileOfFor != std::pair{chain.resolution, chain.tileSize}) {
+    chain.tileOf.resize(static_cast<std::size_t>(chain.resolution));
+    for (int x = 0; x < chain.resolution; ++x)
+      chain.tileOf[static_cast<std::size_t>(x)] = static_cast<std::uint16_t>(x / chain.tileSize);
+    chain.tileOfFor = {chain.resolution, chain.tileSize};
+  }
+  const std::uint16_t* tileOf = chain.tileOf.data();
   const auto forTiles = [&](const CpuItem& item, auto&& visit) {
-    for (int ty = item.rect.y0 / size; ty <= item.rect.y1 / size; ++ty)
-      for (int tx = item.rect.x0 / size; tx <= item.rect.x1 / size; ++tx)
-        visit(static_cast<std::size_t>(ty) * chain.tilesX + tx);
+    const int tx0 = tileOf[item.rect.x0], tx1 = tileOf[item.rect.x1];
+    for (int ty = tileOf[item.rect.y0]; ty <= tileOf[item.rect.y1]; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx) visit(static_cast<std::size_t>(ty) * chain.tilesX + tx);
   };
   for (std::uint32_t i = firstItem; i < endItem; ++i)
     if (!bins.items[i].rect.empty())
@@ -204,13 +213,18 @@ void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
                   tbb::task_arena* arena, CpuBins& bins) {
   const std::size_t commands = recording.commands.size();
   bins.firstItem.resize(commands + 1);
-  std::uint32_t total = 0;
+  bins.firstParts.resize(commands);
+  std::uint32_t total = 0, totalParts = 0;
   for (std::size_t i = 0; i < commands; ++i) {
     bins.firstItem[i] = total;
-    total += itemCount(recording.commands[i]);
+    bins.firstParts[i] = totalParts;
+    const std::uint32_t n = itemCount(recording.commands[i]);
+    total += n;
+    if (recording.commands[i].source != CpuCommand::Source::Boxes) totalParts += n;
   }
   bins.firstItem[commands] = total;
   bins.items.resize(total);
+  bins.parts.resize(totalParts);
 
   // Chains, and each command's pass. The chains' lists are kept from one recording to the next:
   // allocated anew, lists of this size come from fresh pages every time.
@@ -240,7 +254,7 @@ void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
 
   forEach(arena, commands, [&](std::size_t i) {
     makeItems(recording, scene, bounds, static_cast<std::uint32_t>(i), passOf[i],
-              bins.items.data() + bins.firstItem[i]);
+              bins.items.data() + bins.firstItem[i], bins, bins.firstParts[i]);
   });
   forEach(arena, chains, [&](std::size_t c) { binChain(recording, bins, bins.chains[c]); });
 }

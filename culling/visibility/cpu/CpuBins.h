@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "culling/visibility/cpu/CpuMeshBounds.h"
@@ -45,9 +46,12 @@ struct CpuItem {
   PixelRect rect;
   float kLo = 0.f;
   float kHi = 0.f;
-  // The same rectangle per part of kPartTriangles triangles, in order (chunks only).
-  std::array<PixelRect, kChunkTriangles / kPartTriangles> parts;
+  // Chunks: its entry of CpuBins::parts.
+  std::uint32_t parts = 0;
 };
+
+// A chunk item's rectangle per part of kPartTriangles triangles, in order.
+using CpuItemParts = std::array<PixelRect, kChunkTriangles / kPartTriangles>;
 
 // Passes that share one depth buffer, in order: a pass that clears starts one; a SharedSecond
 // pass, or draws going on after a fetch, join the one before (or the buffer a previous recording
@@ -65,6 +69,10 @@ struct CpuChain {
   std::vector<std::uint32_t> binned;
   std::vector<std::uint32_t> tilesUsed;  // tiles with at least one item, ascending
   std::vector<std::uint32_t> fill;       // binning's scratch
+  // Binning's scratch: the tile column (row) of each pixel column (row), for tileOfFor's
+  // resolution and tile size.
+  std::vector<std::uint16_t> tileOf;
+  std::pair<int, int> tileOfFor{0, 0};
   [[nodiscard]] std::span<const std::uint32_t> itemsOf(std::uint32_t tile) const {
     return {binned.data() + offsets[tile], binned.data() + offsets[tile + 1]};
   }
@@ -72,10 +80,12 @@ struct CpuChain {
 
 struct CpuBins {
   std::vector<CpuItem> items;
+  std::vector<CpuItemParts> parts;       // of the chunk items (CpuItem::parts)
   std::vector<std::uint32_t> firstItem;  // per command, and one past the last
   std::vector<CpuChain> chains;          // the first chainCount are this recording's
   std::size_t chainCount = 0;
   std::vector<std::uint32_t> passOf;     // binning's scratch: each command's pass
+  std::vector<std::uint32_t> firstParts;  // binning's scratch: each command's first parts entry
 };
 
 // A recording with its bins: what one fetch ran, kept while writes it left pending may still be

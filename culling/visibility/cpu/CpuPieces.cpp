@@ -73,9 +73,10 @@ void chunkPieces(const CpuRun& run, const Mesh& mesh, const CpuMeshBounds& bound
   const double reach = marginPx + 2.0;
   const double wx0 = window.x0 - reach, wx1 = window.x1 + reach;
   const double wy0 = window.y0 - reach, wy1 = window.y1 + reach;
+  const CpuItemParts& partRects = run.bins.parts[item.parts];
   std::size_t kept = 0;
   for (std::uint32_t part = 0; part < item.count; part += kPartTriangles) {
-    if (!item.parts[part / kPartTriangles].overlaps(window)) continue;
+    if (!partRects[part / kPartTriangles].overlaps(window)) continue;
     const std::uint32_t end = std::min(item.count, part + kPartTriangles);
     for (std::uint32_t i = part; i < end; ++i) {
       const std::uint32_t tri = triangleAt(i);

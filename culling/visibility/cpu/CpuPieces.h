@@ -27,7 +27,7 @@ struct CpuPieces {
 // for a Listed command) that its command draws inside `window` (pixels of the frame, in a pass
 // whose coverage margin is `marginPx`): of a closed mesh drawn whole only the faces that decide it
 // (CpuCommand::winding), and none whose pixel box misses the window (nor any of a part whose
-// rectangle misses it).
+// rectangle misses it: its CpuItemParts).
 void chunkPieces(const CpuRun& run, const Mesh& mesh, const CpuMeshBounds& bounds,
                  const CpuCommand& c, const CpuItem& item, const PixelRect& window, double marginPx,
                  CpuPieces& out);

@@ -99,7 +99,9 @@ inline BlockRange blocksInMask(const CpuDepthBuffer& buffer, const TriangleRaste
   const int nx = buffer.blockX1() - buffer.blockX0() + 1;
   if (mask == kAllBlocks || buffer.blocks() > 64 || nx >= 64) return range;
   if (mask == 0) return {range.x0, range.y0, range.x0 - 1, range.y0 - 1};
-  const int rowLo = std::countr_zero(mask) / nx, rowHi = (63 - std::countl_zero(mask)) / nx;
+  // (A tile of 64 pixels has rows of 8 blocks: a shift then, not a division.)
+  const auto rowOf = [nx](int index) { return nx == 8 ? index >> 3 : index / nx; };
+  const int rowLo = rowOf(std::countr_zero(mask)), rowHi = rowOf(63 - std::countl_zero(mask));
   BlockMask columns = 0;
   for (int row = rowLo; row <= rowHi; ++row) columns |= mask >> (row * nx);
   columns &= (BlockMask{1} << nx) - 1;
