@@ -127,7 +127,7 @@ void drawAllPending(TileAt tile, const CpuScene& scene, CpuTileWork& work) {
 
 // Block `b` with no write pending.
 void emptyBlock(CpuTileState& state, std::size_t b) {
-  state.pendingIn[b].clear();
+  state.pendingIn.clear(b);
   state.pendingNearest[b] = std::numeric_limits<float>::infinity();
   state.pendingBlocks &= ~(BlockMask{1} << b);
 }
@@ -155,8 +155,10 @@ void releasePrepared(TileAt tile) {
 
 // Draws every write pending in block `b` there.
 void drawBlockPending(TileAt tile, const CpuScene& scene, std::size_t b, CpuTileWork& work) {
-  for (const std::uint32_t i : tile.state.pendingIn[b])
+  tile.state.pendingIn.any(b, [&](std::uint32_t i) {
     drawPending(tile, scene, tile.state.pending[i], BlockMask{1} << b, work);
+    return false;
+  });
   emptyBlock(tile.state, b);
 }
 
@@ -171,9 +173,9 @@ void addPending(TileAt tile, const CpuScene& scene, const CpuPendingWrite& write
   // (Drawing a full block touches that block's depths and list only.)
   for (BlockMask m = write.remaining; m != 0; m &= m - 1) {
     const auto b = static_cast<std::size_t>(std::countr_zero(m));
-    state.pendingIn[b].push_back(index);
+    state.pendingIn.push(b, index);
     state.pendingNearest[b] = std::min(state.pendingNearest[b], write.kLo);
-    if (state.pendingIn[b].size() >= mostInBlock) drawBlockPending(tile, scene, b, work);
+    if (state.pendingIn.size(b) >= mostInBlock) drawBlockPending(tile, scene, b, work);
   }
 }
 
@@ -190,8 +192,7 @@ BlockMask blocksReadingPending(const CpuTileState& state, BlockMask blocks, floa
   for (BlockMask m = blocks & state.pendingBlocks; m != 0; m &= m - 1) {
     const auto b = static_cast<std::size_t>(std::countr_zero(m));
     if (state.pendingNearest[b] > kHi) continue;
-    const auto& list = state.pendingIn[b];
-    if (!orderIndependent || std::any_of(list.begin(), list.end(), [&](std::uint32_t i) {
+    if (!orderIndependent || state.pendingIn.any(b, [&](std::uint32_t i) {
           return canOcclude(state.pending[i], kHi, orderIndependent, object);
         }))
       reading |= BlockMask{1} << b;
@@ -242,25 +243,22 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
   auto& t = *static_cast<TestResolution*>(context);
   CpuTileState& state = t.tile.state;
   const BlockMask bit = BlockMask{1} << block;
-  auto& list = state.pendingIn[block];
   bool left = false;
   float nearest = std::numeric_limits<float>::infinity();
-  std::size_t kept = 0;
-  for (const std::uint32_t i : list) {
+  state.pendingIn.keepIf(block, [&](std::uint32_t i) {
     CpuPendingWrite& p = state.pending[i];
     if (!canOcclude(p, zHi, t.orderIndependent, t.item.object)) {
       // Behind this piece; maybe not behind a later one of the test.
       left = left || canOcclude(p, t.item.kHi, t.orderIndependent, t.item.object);
-      list[kept++] = i;
       nearest = std::min(nearest, p.kLo);
-      continue;
+      return true;
     }
     drawPending(t.tile, t.scene, p, bit, t.work);
     t.drew = true;
-  }
-  list.resize(kept);
+    return false;
+  });
   state.pendingNearest[block] = nearest;
-  if (kept == 0) state.pendingBlocks &= ~bit;
+  if (state.pendingIn.size(block) == 0) state.pendingBlocks &= ~bit;
   return left;
 }
 

@@ -95,6 +95,61 @@ struct CpuPreparedScratch {
   void clear() { triangles.used = 0, quads.used = 0; }
 };
 
+// Per block of a tile, a list of indices in the order pushed: the first kInline of each in one
+// array for all blocks (a write made pending in a dozen blocks touches a few cache lines, not a
+// dozen vectors' headers and heaps), the rest in a vector per block.
+class CpuBlockLists {
+ public:
+  static constexpr int kBlocks = 64;
+  static constexpr std::size_t kInline = 32;
+  void push(std::size_t b, std::uint32_t i) {
+    std::uint32_t& n = count_[b];
+    if (n < kInline)
+      first_[b][n] = i;
+    else
+      more_[b].push_back(i);
+    ++n;
+  }
+  [[nodiscard]] std::size_t size(std::size_t b) const { return count_[b]; }
+  void clear(std::size_t b) {
+    if (count_[b] > kInline) more_[b].clear();
+    count_[b] = 0;
+  }
+  // Calls f(i) for each entry of block b in order, stopping when f returns true; true if one did.
+  template <class F>
+  bool any(std::size_t b, F&& f) const {
+    const std::size_t n = count_[b];
+    for (std::size_t k = 0; k < std::min(n, kInline); ++k)
+      if (f(first_[b][k])) return true;
+    for (std::size_t k = kInline; k < n; ++k)
+      if (f(more_[b][k - kInline])) return true;
+    return false;
+  }
+  // Keeps the entries of block b for which keep(i) is true, in order.
+  template <class Keep>
+  void keepIf(std::size_t b, Keep&& keep) {
+    const std::size_t n = count_[b];
+    std::size_t kept = 0;
+    const auto visit = [&](std::uint32_t i) {
+      if (!keep(i)) return;
+      if (kept < kInline)
+        first_[b][kept] = i;
+      else
+        more_[b][kept - kInline] = i;
+      ++kept;
+    };
+    for (std::size_t k = 0; k < std::min(n, kInline); ++k) visit(first_[b][k]);
+    for (std::size_t k = kInline; k < n; ++k) visit(more_[b][k - kInline]);
+    count_[b] = static_cast<std::uint32_t>(kept);
+    if (n > kInline) more_[b].resize(kept > kInline ? kept - kInline : 0);
+  }
+
+ private:
+  std::array<std::uint32_t, kBlocks> count_{};
+  std::array<std::array<std::uint32_t, kInline>, kBlocks> first_;
+  std::array<std::vector<std::uint32_t>, kBlocks> more_;
+};
+
 // A tile of a chain's depth buffer: the depths resolved so far and the writes still pending.
 struct CpuTileState {
   static constexpr int kBlocks = 64;  // at most, in a demand-driven tile
@@ -103,7 +158,7 @@ struct CpuTileState {
   // per block of the tile those not drawn there yet (indices into `pending`, ascending) with the
   // nearest key among them (+infinity: none).
   std::vector<CpuPendingWrite> pending;
-  std::array<std::vector<std::uint32_t>, kBlocks> pendingIn;
+  CpuBlockLists pendingIn;
   std::array<float, kBlocks> pendingNearest = [] {
     std::array<float, kBlocks> none;
     none.fill(std::numeric_limits<float>::infinity());
