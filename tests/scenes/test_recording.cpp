@@ -1,5 +1,6 @@
 // Pose recordings: the hash, the scenario fingerprint, recording a simulation, and the file format
 // (round trip, atomic writes, and a clear error for every way a file can be wrong).
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -12,6 +13,8 @@
 #include <unistd.h>
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "core/Errors.h"
 #include "scenes/PoseRecording.h"
@@ -139,6 +142,24 @@ TEST(PoseRecording, FingerprintCoversWhatDeterminesFramesOnly) {
   SceneGeometry finer = scene;
   finer.meshes[0] = makeTorus(0.5, 0.2, 30, 30);
   EXPECT_NE(scenarioFingerprint(base, finer), f);
+  // Another copy of a mesh: same counts and bounds, one vertex moved inside them (the npm PLY and
+  // the OBJ of the dragon differ so), or one triangle's corners in another order.
+  SceneGeometry moved = scene;
+  const auto box = scene.meshes[0].bounds();
+  const auto inside = std::find_if(
+      moved.meshes[0].vertices.begin(), moved.meshes[0].vertices.end(), [&](const auto& v) {
+        return ((v.template cast<double>().array() > box.min().array()) &&
+                (v.template cast<double>().array() < box.max().array()))
+            .all();
+      });
+  ASSERT_NE(inside, moved.meshes[0].vertices.end());
+  *inside *= 0.999f;
+  EXPECT_EQ(moved.meshes[0].bounds().min(), box.min());
+  EXPECT_EQ(moved.meshes[0].bounds().max(), box.max());
+  EXPECT_NE(scenarioFingerprint(base, moved), f);
+  SceneGeometry turned = scene;
+  std::swap(turned.meshes[0].triangles[0][0], turned.meshes[0].triangles[0][1]);
+  EXPECT_NE(scenarioFingerprint(base, turned), f);
 }
 
 TEST(PoseRecording, RecordsFramesAfterWarmUp) {
