@@ -84,7 +84,7 @@ struct CpuBins {
   std::vector<std::uint32_t> firstItem;  // per command, and one past the last
   std::vector<CpuChain> chains;          // the first chainCount are this recording's
   std::size_t chainCount = 0;
-  std::vector<std::uint32_t> passOf;     // binning's scratch: each command's pass
+  std::vector<std::uint32_t> passOf;      // binning's scratch: each command's pass
   std::vector<std::uint32_t> firstParts;  // binning's scratch: each command's first parts entry
 };
 

@@ -155,9 +155,8 @@ void releasePrepared(TileAt tile) {
 
 // Draws every write pending in block `b` there.
 void drawBlockPending(TileAt tile, const CpuScene& scene, std::size_t b, CpuTileWork& work) {
-  tile.state.pendingIn.any(b, [&](std::uint32_t i) {
+  tile.state.pendingIn.forEach(b, [&](std::uint32_t i) {
     drawPending(tile, scene, tile.state.pending[i], BlockMask{1} << b, work);
-    return false;
   });
   emptyBlock(tile.state, b);
 }

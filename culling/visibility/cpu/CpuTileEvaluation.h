@@ -125,6 +125,14 @@ class CpuBlockLists {
       if (f(more_[b][k - kInline])) return true;
     return false;
   }
+  // Calls f(i) for each entry of block b in order.
+  template <class F>
+  void forEach(std::size_t b, F&& f) const {
+    any(b, [&](std::uint32_t i) {
+      f(i);
+      return false;
+    });
+  }
   // Keeps the entries of block b for which keep(i) is true, in order.
   template <class Keep>
   void keepIf(std::size_t b, Keep&& keep) {
@@ -152,7 +160,7 @@ class CpuBlockLists {
 
 // A tile of a chain's depth buffer: the depths resolved so far and the writes still pending.
 struct CpuTileState {
-  static constexpr int kBlocks = 64;  // at most, in a demand-driven tile
+  static constexpr int kBlocks = CpuBlockLists::kBlocks;  // at most, in a demand-driven tile
   CpuDepthBuffer depth;
   // Writes not drawn everywhere yet, in issue order (an entry stays until nothing is pending), and
   // per block of the tile those not drawn there yet (indices into `pending`, ascending) with the
