@@ -251,8 +251,8 @@ RunSummary runScenario(const RunOptions& options) {
     summary.resumedFromOtherBuilds = store.otherBuilds(std::string(buildCommit()));
 
   installInterruptHandlers();
-  CellFrames frames(config, options, store, assetSearchPath(options.assetDirs), *backend,
-                    summary.time);
+  const std::vector<std::string> assetDirs = assetSearchPath(options.assetDirs);
+  CellFrames frames(config, options, store, assetDirs, *backend, summary.time);
   if (!todo.empty()) frames.prepare(todo.front());
   store.claim();
 
@@ -292,7 +292,7 @@ RunSummary runScenario(const RunOptions& options) {
 
   const nlohmann::json shardMeta =
       shardMetaJson(shard, options, config, *backend, resources, summary.time,
-                    assetFiles(config, assetSearchPath(options.assetDirs)));
+                    assetFiles(config, assetDirs));
   writeFileAtomically(options.outDir /
                           ("shard-" + std::to_string(shard.index) + "-of-" +
                            std::to_string(shard.count) + ".json"),

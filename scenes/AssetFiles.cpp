@@ -16,13 +16,14 @@ std::string fileSha256(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": cannot be read");
   const std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(),
-                                                                     EVP_MD_CTX_free);
+                                                                    EVP_MD_CTX_free);
   if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
     throw RunError("SHA-256 is not available from OpenSSL");
   std::array<char, 1 << 16> buffer;
   while (in) {
     in.read(buffer.data(), buffer.size());
-    if (in.gcount() > 0) EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
+    if (in.gcount() > 0)
+      EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
   }
   if (in.bad()) throw InputError(path.string() + ": read failed");
   std::array<unsigned char, EVP_MAX_MD_SIZE> digest;
@@ -43,7 +44,8 @@ std::vector<AssetFile> assetFiles(const ScenarioConfig& config,
   for (const BodyGroup& group : config.bodies) {
     if (group.mesh.kind != MeshSpec::Kind::Asset) continue;
     const std::string& asset = group.mesh.asset;
-    if (std::any_of(files.begin(), files.end(), [&](const AssetFile& f) { return f.asset == asset; }))
+    if (std::any_of(files.begin(), files.end(),
+                    [&](const AssetFile& f) { return f.asset == asset; }))
       continue;
     AssetFile f;
     f.asset = asset;
