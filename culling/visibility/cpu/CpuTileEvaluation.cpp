@@ -318,7 +318,11 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
                   CpuAnswers answers, CpuPreparedScratch& prepared, CpuTileWork& work) {
   const TileAt at{state, prepared};
   const PixelRect inTile = tileRect(state.depth);
-  for (const std::uint32_t i : run.bins.chains[chain].itemsOf(tile)) {
+  const std::span<const std::uint32_t> items = run.bins.chains[chain].itemsOf(tile);
+  for (std::size_t n = 0; n < items.size(); ++n) {
+    const std::uint32_t i = items[n];
+    // (A tile's items lie scattered in the recording's: the next few are fetched ahead.)
+    if (n + 4 < items.size()) __builtin_prefetch(&run.bins.items[items[n + 4]]);
     const CpuItem& item = run.bins.items[i];
     const RasterPass& raster = run.recording.passes[item.pass].raster;
     enterPass(at, scene, raster, work);
