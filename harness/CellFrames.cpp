@@ -69,6 +69,7 @@ void CellFrames::buildScene(int objectCount) {
     exact_.reset();
     truth_.reset();
     scene_ = cdb::buildScene(*cellConfig_, assetDirs_);
+    for (AssetFile& f : assetFiles(*cellConfig_, *scene_, assets_)) assets_.push_back(std::move(f));
     movingObjects_ = countMovingBodies(*scene_);
     exact_.emplace(*scene_);
     backend_.attachScene(*scene_);

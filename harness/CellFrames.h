@@ -16,6 +16,7 @@
 #include "harness/RunOptions.h"
 #include "harness/RunPlan.h"
 #include "harness/WallTimeBreakdown.h"
+#include "scenes/AssetFiles.h"
 #include "scenes/PoseRecording.h"
 #include "scenes/ScenarioConfig.h"
 #include "scenes/SceneGeometry.h"
@@ -47,6 +48,10 @@ class CellFrames {
   [[nodiscard]] const std::vector<ObjectPair>& truthPairs(std::uint32_t frame) const {
     return truthPairs_[frame];
   }
+  // Whether a scene was built, and the asset files the scenes built so far were loaded from (each
+  // asset and file once, hashed as they were loaded).
+  [[nodiscard]] bool builtAScene() const { return sceneCount_.has_value(); }
+  [[nodiscard]] const std::vector<AssetFile>& loadedAssets() const { return assets_; }
 
  private:
   void buildScene(int objectCount);
@@ -62,6 +67,7 @@ class CellFrames {
   std::optional<int> sceneCount_;
   std::optional<ScenarioConfig> cellConfig_;
   std::optional<SceneGeometry> scene_;
+  std::vector<AssetFile> assets_;
   std::optional<ExactPhase> exact_;
   std::optional<GroundTruth> truth_;
   int movingObjects_ = 0;

@@ -290,12 +290,13 @@ RunSummary runScenario(const RunOptions& options) {
   progress.finish();
   summary.time.wallSeconds = msSince(runStart, Clock::now()) / 1e3;
 
+  // The files the scenes were built from; a run that built none (every cell resumed) names those
+  // the asset path resolves to now.
   const nlohmann::json shardMeta =
       shardMetaJson(shard, options, config, *backend, resources, summary.time,
-                    assetFiles(config, assetDirs));
-  writeFileAtomically(options.outDir /
-                          ("shard-" + std::to_string(shard.index) + "-of-" +
-                           std::to_string(shard.count) + ".json"),
+                    frames.builtAScene() ? frames.loadedAssets() : assetFiles(config, assetDirs));
+  writeFileAtomically(options.outDir / ("shard-" + std::to_string(shard.index) + "-of-" +
+                                        std::to_string(shard.count) + ".json"),
                       shardMeta.dump(2) + "\n");
 
   for (const auto& c : plan)

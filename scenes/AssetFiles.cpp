@@ -38,6 +38,19 @@ std::string fileSha256(const std::filesystem::path& path) {
   return hex;
 }
 
+namespace {
+
+AssetFile describe(const std::string& asset, std::filesystem::path path) {
+  AssetFile f;
+  f.asset = asset;
+  f.path = std::move(path);
+  f.bytes = std::filesystem::file_size(f.path);
+  f.sha256 = fileSha256(f.path);
+  return f;
+}
+
+}  // namespace
+
 std::vector<AssetFile> assetFiles(const ScenarioConfig& config,
                                   const std::vector<std::string>& dirs) {
   std::vector<AssetFile> files;
@@ -47,12 +60,25 @@ std::vector<AssetFile> assetFiles(const ScenarioConfig& config,
     if (std::any_of(files.begin(), files.end(),
                     [&](const AssetFile& f) { return f.asset == asset; }))
       continue;
-    AssetFile f;
-    f.asset = asset;
-    f.path = resolveAsset(asset, dirs);
-    f.bytes = std::filesystem::file_size(f.path);
-    f.sha256 = fileSha256(f.path);
-    files.push_back(std::move(f));
+    files.push_back(describe(asset, resolveAsset(asset, dirs)));
+  }
+  return files;
+}
+
+std::vector<AssetFile> assetFiles(const ScenarioConfig& config, const SceneGeometry& scene,
+                                  const std::vector<AssetFile>& known) {
+  if (scene.meshes.size() != config.bodies.size())
+    throw RunError("assetFiles: the scene was not built from this config");
+  std::vector<AssetFile> files;
+  for (std::size_t g = 0; g < config.bodies.size(); ++g) {
+    if (config.bodies[g].mesh.kind != MeshSpec::Kind::Asset) continue;
+    const std::string& asset = config.bodies[g].mesh.asset;
+    const std::filesystem::path path = scene.meshes[g].source;
+    const auto same = [&](const AssetFile& f) { return f.asset == asset && f.path == path; };
+    if (std::any_of(known.begin(), known.end(), same) ||
+        std::any_of(files.begin(), files.end(), same))
+      continue;
+    files.push_back(describe(asset, path));
   }
   return files;
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "scenes/ScenarioConfig.h"
+#include "scenes/SceneGeometry.h"
 
 namespace cdb {
 
@@ -22,6 +23,11 @@ struct AssetFile {
 // body groups, each asset once.
 [[nodiscard]] std::vector<AssetFile> assetFiles(const ScenarioConfig& config,
                                                 const std::vector<std::string>& dirs);
+// The files the asset meshes of `scene` (buildScene(config, ...): a mesh per body group) were
+// loaded from, in the same order, each (asset, file) once and none of `known` again.
+[[nodiscard]] std::vector<AssetFile> assetFiles(const ScenarioConfig& config,
+                                                const SceneGeometry& scene,
+                                                const std::vector<AssetFile>& known = {});
 
 // SHA-256 of a file's bytes, as lowercase hex. Throws InputError when it cannot be read.
 [[nodiscard]] std::string fileSha256(const std::filesystem::path& path);

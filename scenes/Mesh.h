@@ -13,6 +13,7 @@ using Triangle = std::array<std::uint32_t, 3>;
 
 struct Mesh {
   std::string name;
+  std::string source;  // the file it was loaded from (empty: made here)
   std::vector<Eigen::Vector3f> vertices;
   std::vector<Triangle> triangles;
 

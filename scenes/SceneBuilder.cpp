@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "core/Errors.h"
 #include "scenes/AssetPath.h"
@@ -23,10 +24,13 @@ Mesh makeMesh(const BodyGroup& group, const std::vector<std::string>& assetDirs)
     case MeshSpec::Kind::Plane:
       mesh = makePlane(spec.planeSize, spec.planeCells);
       break;
-    case MeshSpec::Kind::Asset:
-      mesh = loadMesh(resolveAsset(spec.asset, assetDirs), {spec.maxTriangles}).mesh;
+    case MeshSpec::Kind::Asset: {
+      const std::filesystem::path file = resolveAsset(spec.asset, assetDirs);
+      mesh = loadMesh(file, {spec.maxTriangles}).mesh;
       normaliseMesh(mesh, spec.assetSize);
+      mesh.source = file.string();
       break;
+    }
   }
   mesh.name = group.name;
   return mesh;

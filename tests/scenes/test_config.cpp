@@ -10,6 +10,7 @@
 #include "ScratchDir.h"
 #include "TestAssets.h"
 #include "core/Errors.h"
+#include "scenes/AssetFiles.h"
 #include "scenes/ConfigLoader.h"
 #include "scenes/SceneBuilder.h"
 
@@ -573,6 +574,40 @@ TEST(SceneBuilder, AssetIsNormalisedToItsSize) {
   EXPECT_EQ(scene.meshes[0].triangleCount(), 4u);
   EXPECT_NEAR(scene.meshes[0].bounds().sizes().maxCoeff(), 2.0, 1e-6);
   EXPECT_NEAR(scene.meshes[0].bounds().center().norm(), 0.0, 1e-6);
+}
+
+// A built scene names the file each asset mesh was loaded from, and assetFiles records that file
+// (each asset and file once), not the copy the asset path finds after the build.
+TEST(SceneBuilder, AssetMeshesNameTheFileTheyWereLoadedFrom) {
+  ScratchDir dir;
+  const std::string wedge =
+      "v 10 10 10\nv 14 10 10\nv 10 12 10\nv 10 10 11\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  dir.write("first/notes.txt", "");
+  const auto loaded = dir.write("second/wedge.obj", wedge);
+  const auto config = loadScenarioConfig(
+      dir.write("s.yaml",
+                "environment: t\nbodies:\n"
+                "  - {name: w, mesh: {kind: asset, asset: wedge}, poses: [{}]}\n"
+                "  - {name: v, mesh: {kind: asset, asset: wedge}, poses: [{}]}\n"));
+  const std::vector<std::string> dirs{(dir.path() / "first").string(),
+                                      (dir.path() / "second").string()};
+  const SceneGeometry scene = buildScene(config, dirs);
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_EQ(scene.meshes[0].source, loaded.string());
+
+  const auto later = dir.write("first/wedge.obj", wedge + "# another copy\n");
+  const std::vector<AssetFile> files = assetFiles(config, scene);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].asset, "wedge");
+  EXPECT_EQ(files[0].path, loaded);
+  EXPECT_EQ(files[0].bytes, wedge.size());
+  EXPECT_EQ(files[0].sha256, fileSha256(loaded));
+  EXPECT_NE(files[0].sha256, fileSha256(later));
+  EXPECT_EQ(assetFiles(config, dirs).at(0).path, later);  // what the path finds now
+  EXPECT_TRUE(assetFiles(config, scene, files).empty());  // known: not again
+  const std::vector<AssetFile> rebuilt = assetFiles(config, buildScene(config, dirs), files);
+  ASSERT_EQ(rebuilt.size(), 1u);
+  EXPECT_EQ(rebuilt[0].path, later);
 }
 
 // --- the shipped environments --------------------------------------------------------------------
