@@ -71,26 +71,27 @@ namespace raster_detail {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The next float above (below) a finite f, by its bits (std::nextafter is a library call, and
-// this runs a few times per triangle).
+// The next float above f, by its bits (std::nextafter is a library call, and this runs a few
+// times per triangle): either zero gives the smallest subnormal, -infinity the lowest float; not
+// for +infinity or NaN. Selects, not branches.
 inline float nextUp(float f) {
-  if (f == 0.f) return std::numeric_limits<float>::denorm_min();
   const auto bits = std::bit_cast<std::uint32_t>(f);
-  return std::bit_cast<float>(f > 0.f ? bits + 1u : bits - 1u);
+  const std::uint32_t step = (bits >> 31) != 0 ? ~0u : 1u;  // toward +infinity: -1 if negative
+  return std::bit_cast<float>((bits << 1) == 0 ? 1u : bits + step);
 }
-inline float nextDown(float f) { return -nextUp(-f); }
 
-// The float nearest to v that is not below (above) it; infinities stay as they are.
+// The float nearest to v that is not below (above) it; infinities stay as they are. Round to
+// nearest goes either way about half the time, so a branch on it mispredicts as often: the
+// result is a select of both candidates' bits.
 inline float roundUp(double v) {
   const float f = static_cast<float>(v);
-  if (!(static_cast<double>(f) < v)) return f;
-  return std::isfinite(f) ? nextUp(f) : std::numeric_limits<float>::lowest();
+  const bool below = static_cast<double>(f) < v;  // then f is finite or -infinity
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  const std::uint32_t up = std::bit_cast<std::uint32_t>(nextUp(f));
+  // (Arithmetic on a mask: written as a conditional, the compiler makes it a branch again.)
+  return std::bit_cast<float>(bits + ((up - bits) & (0u - static_cast<std::uint32_t>(below))));
 }
-inline float roundDown(double v) {
-  const float f = static_cast<float>(v);
-  if (!(static_cast<double>(f) > v)) return f;
-  return std::isfinite(f) ? nextDown(f) : std::numeric_limits<float>::max();
-}
+inline float roundDown(double v) { return -roundUp(-v); }
 
 // Bound on the error of evaluating a dx + b dy + c in float (a, b, c rounded to float, two or
 // three fused multiply-adds) relative to the exact value, as a fraction of |a| W + |b| H + |c|
