@@ -92,10 +92,12 @@ void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3
   boundItem(extentOf(toScreen, all), pass, item);
 }
 
-// Every item of command `ci`, at items[0 ..]; a chunk item's parts at bins.parts[firstParts ..].
+// Items [n0, n1) of command `ci`, at items[n0 ..]; a chunk item's parts at
+// bins.parts[firstParts + n0 ..].
 void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
                std::span<const CpuMeshBounds> bounds, std::uint32_t ci, std::uint32_t pass,
-               CpuItem* items, CpuBins& bins, std::uint32_t firstParts) {
+               CpuItem* items, CpuBins& bins, std::uint32_t firstParts, std::uint32_t n0,
+               std::uint32_t n1) {
   const CpuCommand& c = recording.commands[ci];
   const RasterPass& raster = recording.passes[pass].raster;
   CpuItem base;
@@ -109,8 +111,10 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
   switch (c.source) {
     case CpuCommand::Source::Range: {
       const std::uint32_t end = c.first + c.count;
-      std::uint32_t n = 0;
-      for (std::uint32_t at = c.first; at < end; ++n) {
+      std::uint32_t n = n0;
+      for (std::uint32_t at = n0 == 0 ? c.first
+                                      : (c.first / kChunkTriangles + n0) * kChunkTriangles;
+           n < n1; ++n) {
         const std::uint32_t chunk = at / kChunkTriangles;
         const std::uint32_t stop = std::min(end, (chunk + 1) * kChunkTriangles);
         CpuItem& item = items[n] = base;
@@ -134,7 +138,7 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
       return;
     }
     case CpuCommand::Source::Listed: {
-      for (std::uint32_t n = 0, at = 0; at < c.count; ++n, at += kChunkTriangles) {
+      for (std::uint32_t n = n0, at = n0 * kChunkTriangles; n < n1; ++n, at += kChunkTriangles) {
         CpuItem& item = items[n] = base;
         item.first = c.first + at;
         item.count = std::min(kChunkTriangles, c.count - at);
@@ -151,7 +155,7 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
       return;
     }
     case CpuCommand::Source::Boxes:
-      for (std::uint32_t b = 0; b < c.count; ++b) {
+      for (std::uint32_t b = n0; b < n1; ++b) {
         CpuItem& item = items[b] = base;
         item.first = c.first + b, item.count = 1, item.answer = answerOf(b);
         const ScreenMatrix cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
@@ -162,6 +166,8 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
   (void)scene;
 }
 
+constexpr std::uint32_t kItemsPerTask = 512;
+
 template <class Body>
 void forEach(tbb::task_arena* arena, std::size_t count, const Body& body) {
   if (!arena || count < 2) {
@@ -171,7 +177,11 @@ void forEach(tbb::task_arena* arena, std::size_t count, const Body& body) {
   arena->execute([&] { tbb::parallel_for(std::size_t{0}, count, body); });
 }
 
-void binChain(const CpuRecording& recording, const CpuBins& bins, CpuChain& chain) {
+// A chain's items listed per tile, in issue order: each run of items counts its
+// (item, tile) entries per tile, the runs' counts in order give where each run writes in a tile's
+// list, and each run writes its own.
+void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_arena* arena,
+              CpuChain& chain) {
   const std::uint32_t firstCommand = recording.passes[chain.firstPass].firstCommand;
   const std::uint32_t endCommand = recording.passes[chain.endPass - 1].endCommand;
   const std::uint32_t firstItem = bins.firstItem[firstCommand];
@@ -191,19 +201,40 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, CpuChain& chai
     for (int ty = tileOf[item.rect.y0]; ty <= tileOf[item.rect.y1]; ++ty)
       for (int tx = tx0; tx <= tx1; ++tx) visit(static_cast<std::size_t>(ty) * chain.tilesX + tx);
   };
-  for (std::uint32_t i = firstItem; i < endItem; ++i)
-    if (!bins.items[i].rect.empty())
-      forTiles(bins.items[i], [&](std::size_t t) { ++chain.offsets[t + 1]; });
+  // One run without threads; with them at most four a thread (the runs' counts are summed tile by
+  // tile), of at least kItemsPerTask items.
+  const std::uint32_t items = endItem - firstItem;
+  const std::uint32_t most = arena ? 4 * static_cast<std::uint32_t>(arena->max_concurrency()) : 1;
+  const std::uint32_t perRun = std::max(kItemsPerTask, (items + most - 1) / most);
+  const std::size_t runs = (items + perRun - 1) / perRun;
+  const auto eachItem = [&](std::size_t run, auto&& visit) {
+    const std::uint32_t i0 = firstItem + static_cast<std::uint32_t>(run) * perRun;
+    const std::uint32_t i1 = std::min(endItem, i0 + perRun);
+    std::uint32_t* at = chain.fill.data() + run * tiles;
+    for (std::uint32_t i = i0; i < i1; ++i)
+      if (!bins.items[i].rect.empty())
+        forTiles(bins.items[i], [&](std::size_t t) { visit(i, at[t]); });
+  };
+  chain.fill.assign(runs * tiles, 0);
+  forEach(arena, runs,
+          [&](std::size_t r) { eachItem(r, [](std::uint32_t, std::uint32_t& n) { ++n; }); });
   chain.tilesUsed.clear();
+  std::uint32_t entries = 0;
   for (std::size_t t = 0; t < tiles; ++t) {
-    if (chain.offsets[t + 1] > 0) chain.tilesUsed.push_back(static_cast<std::uint32_t>(t));
-    chain.offsets[t + 1] += chain.offsets[t];
+    chain.offsets[t] = entries;
+    for (std::size_t r = 0; r < runs; ++r) {
+      std::uint32_t& n = chain.fill[r * tiles + t];  // the run's count in the tile, then its start
+      const std::uint32_t count = n;
+      n = entries;
+      entries += count;
+    }
+    if (entries > chain.offsets[t]) chain.tilesUsed.push_back(static_cast<std::uint32_t>(t));
   }
-  chain.binned.resize(chain.offsets[tiles]);
-  chain.fill.assign(chain.offsets.begin(), chain.offsets.end() - 1);
-  for (std::uint32_t i = firstItem; i < endItem; ++i)
-    if (!bins.items[i].rect.empty())
-      forTiles(bins.items[i], [&](std::size_t t) { chain.binned[chain.fill[t]++] = i; });
+  chain.offsets[tiles] = entries;
+  chain.binned.resize(entries);
+  forEach(arena, runs, [&](std::size_t r) {
+    eachItem(r, [&](std::uint32_t i, std::uint32_t& n) { chain.binned[n++] = i; });
+  });
 }
 
 }  // namespace
@@ -252,11 +283,20 @@ void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
   }
   bins.chainCount = chains;
 
-  forEach(arena, commands, [&](std::size_t i) {
-    makeItems(recording, scene, bounds, static_cast<std::uint32_t>(i), passOf[i],
-              bins.items.data() + bins.firstItem[i], bins, bins.firstParts[i]);
+  // Items in runs of at most kItemsPerTask, so that a command of thousands of boxes is bounded on
+  // every thread.
+  bins.itemTasks.clear();
+  for (std::uint32_t i = 0; i < commands; ++i) {
+    const std::uint32_t n = bins.firstItem[i + 1] - bins.firstItem[i];
+    for (std::uint32_t n0 = 0; n0 < n; n0 += kItemsPerTask)
+      bins.itemTasks.push_back({i, n0, std::min(n, n0 + kItemsPerTask)});
+  }
+  forEach(arena, bins.itemTasks.size(), [&](std::size_t t) {
+    const auto [i, n0, n1] = bins.itemTasks[t];
+    makeItems(recording, scene, bounds, i, passOf[i], bins.items.data() + bins.firstItem[i], bins,
+              bins.firstParts[i], n0, n1);
   });
-  forEach(arena, chains, [&](std::size_t c) { binChain(recording, bins, bins.chains[c]); });
+  forEach(arena, chains, [&](std::size_t c) { binChain(recording, bins, arena, bins.chains[c]); });
 }
 
 }  // namespace cdb

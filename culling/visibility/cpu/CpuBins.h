@@ -68,7 +68,7 @@ struct CpuChain {
   std::vector<std::uint32_t> offsets;
   std::vector<std::uint32_t> binned;
   std::vector<std::uint32_t> tilesUsed;  // tiles with at least one item, ascending
-  std::vector<std::uint32_t> fill;       // binning's scratch
+  std::vector<std::uint32_t> fill;       // binning's scratch: per run of items, per tile
   // Binning's scratch: the tile column (row) of each pixel column (row), for tileOfFor's
   // resolution and tile size.
   std::vector<std::uint16_t> tileOf;
@@ -86,6 +86,8 @@ struct CpuBins {
   std::size_t chainCount = 0;
   std::vector<std::uint32_t> passOf;      // binning's scratch: each command's pass
   std::vector<std::uint32_t> firstParts;  // binning's scratch: each command's first parts entry
+  // Binning's scratch: runs of items bounded as one task (command, first and end item in it).
+  std::vector<std::array<std::uint32_t, 3>> itemTasks;
 };
 
 // A recording with its bins: what one fetch ran, kept while writes it left pending may still be
