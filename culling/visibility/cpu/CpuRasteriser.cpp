@@ -79,7 +79,7 @@ inline float farthestKeyIn(const TriangleRaster& r, int bx, int by) {
   const double plane = r.zc + zx + zy;
   const double rounding = 1e-6 * (std::abs(double{r.zc}) + std::abs(zx) + std::abs(zy));
   const double key = std::clamp(plane + rounding, double{r.zLo}, double{r.zHi});
-  return std::nextafter(static_cast<float>(key), std::numeric_limits<float>::infinity());
+  return raster_detail::nextUp(static_cast<float>(key));  // (key is finite)
 }
 
 // The blocks of the triangle's pixel box inside the buffer's window (inclusive; empty when the
