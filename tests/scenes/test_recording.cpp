@@ -14,8 +14,6 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-
 #include "core/Errors.h"
 #include "scenes/PoseRecording.h"
 #include "scenes/RigidBodySimulation.h"

@@ -187,7 +187,7 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_aren
   const std::uint32_t firstItem = bins.firstItem[firstCommand];
   const std::uint32_t endItem = bins.firstItem[endCommand];
   const std::size_t tiles = static_cast<std::size_t>(chain.tilesX) * chain.tilesX;
-  chain.offsets.assign(tiles + 1, 0);
+  chain.offsets.resize(tiles + 1);  // every entry written below
   // (A table, not a division per item and coordinate.)
   if (chain.tileOfFor != std::pair{chain.resolution, chain.tileSize}) {
     chain.tileOf.resize(static_cast<std::size_t>(chain.resolution));
