@@ -71,7 +71,7 @@ void CellFrames::buildScene(int objectCount) {
     scene_ = cdb::buildScene(*cellConfig_, assetDirs_);
     for (AssetFile& f : assetFiles(*cellConfig_, *scene_, assets_)) assets_.push_back(std::move(f));
     movingObjects_ = countMovingBodies(*scene_);
-    exact_.emplace(*scene_);
+    exact_.emplace(*scene_, cellConfig_->culling.visibility.threads);
     backend_.attachScene(*scene_);
     framesOf_.reset();
   }

@@ -21,7 +21,7 @@ struct RunOptions {
   std::optional<bool> conservative;      // --raw sets false
   std::optional<double> rawDepthOffset;  // --raw-offset: raw mode's depth offset (NDC units)
   std::optional<std::string> visibility;  // --visibility: backend name (cdbench backends)
-  std::optional<int> threads;             // --threads: CPU backends' worker threads, 0 = all
+  std::optional<int> threads;             // --threads: cpu backend's and exact phase's threads, 0 = all
   std::filesystem::path outDir = "results/latest";
   std::vector<std::string> assetDirs;  // --assets, before CDBENCH_ASSETS
   std::string glPlatform = "auto";

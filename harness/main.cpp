@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
                      "visibility backend (cdbench backends; default: the config's culling.visibility.backend, else " +
                          std::string(cdb::VisibilityBackendRegistry::kDefault) + ")");
   auto* threadsOpt = runCmd->add_option("--threads", threads,
-                                        "worker threads of a CPU visibility backend (0 = every core)");
+                                        "worker threads of a CPU visibility backend and of the exact phase (0 = every core)");
   runCmd->add_flag("--raw", raw, "raw rasterisation (no conservative widening): may miss contacts");
   auto* rawOffsetOpt = runCmd->add_option(
       "--raw-offset", rawOffset,

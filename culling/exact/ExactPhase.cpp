@@ -1,5 +1,10 @@
 #include "culling/exact/ExactPhase.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -28,12 +33,24 @@ Aabb conservative(Aabb box) {
 
 // A member's triangles in world space, built the first time the member meets another in a set.
 struct MemberGeometry {
-  bool ready = false;
   std::vector<Vec3> vertices;
   std::vector<Triangle> ownTriangles;   // used when the mesh's own list does not fit
   std::span<const Triangle> triangles;  // index into `vertices`, one per member triangle
   std::vector<Aabb> boxes;              // world box of each member triangle
   Aabb bounds;                          // their union: tight, unlike the set-level box
+};
+
+// Per thread: the candidates of the pair it tests.
+struct PairScratch {
+  std::vector<Aabb> candidateBoxes[2];
+  std::vector<std::uint32_t> candidateTriangles[2];
+  std::vector<IndexPair> trianglePairs;
+  SweepAndPrune sweep;
+};
+
+struct PairOutcome {
+  std::uint64_t triangleTests = 0;
+  std::uint64_t hits = 0;
 };
 
 }  // namespace
@@ -48,16 +65,31 @@ struct ExactPhase::Workspace {
   std::vector<IndexPair> memberPairs;
   std::vector<std::uint32_t> listedPairOf;  // a set with listed pairs: each member pair's entry
   std::vector<MemberGeometry> members;
-  std::vector<Aabb> candidateBoxes[2];
-  std::vector<std::uint32_t> candidateTriangles[2];
-  std::vector<IndexPair> trianglePairs;
   SweepAndPrune sweep;
   std::vector<ObjectPair> colliding;
   std::unordered_set<std::uint64_t> collidingKeys;
+
+  // The member pairs of a set to test, in order; whether an earlier one names the same objects
+  // (then it is tested after them, in order, as it is skipped once they collide); the members
+  // they need; each pair's outcome.
+  std::vector<std::uint32_t> toTest;
+  std::vector<std::uint8_t> repeats;
+  std::unordered_set<std::uint64_t> keysInSet;
+  std::vector<std::uint32_t> needed;
+  std::vector<std::uint8_t> isNeeded;
+  std::vector<PairOutcome> outcomes;
+
+  // Without threads (nullptr) everything runs on the calling thread.
+  std::unique_ptr<tbb::task_arena> arena;
+  tbb::enumerable_thread_specific<PairScratch> scratch;
 };
 
-ExactPhase::ExactPhase(const SceneGeometry& scene)
+ExactPhase::ExactPhase(const SceneGeometry& scene, int threads)
     : scene_(scene), work_(std::make_unique<Workspace>()) {
+  if (threads < 0)
+    throw std::invalid_argument("exact phase: " + std::to_string(threads) + " threads");
+  if (threads == 0) threads = tbb::info::default_concurrency();
+  if (threads > 1) work_->arena = std::make_unique<tbb::task_arena>(threads);
   work_->meshBounds.reserve(scene.meshes.size());
   work_->localTriangleBoxes.resize(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -103,7 +135,6 @@ void transformVertices(const Mesh& mesh, const Pose& pose, std::vector<Vec3>& ou
 }
 
 void prepare(MemberGeometry& g, const Mesh& mesh, const SetMember& member, const Pose& pose) {
-  g.ready = true;
   const std::size_t count = member.allTriangles() ? mesh.triangleCount() : member.triangles.size();
   if (member.allTriangles()) {
     transformVertices(mesh, pose, g.vertices);
@@ -213,6 +244,43 @@ Aabb narrowCandidates(const Aabb& region, std::vector<Aabb>& boxes,
 
 std::uint64_t keyOf(ObjectPair p) { return (std::uint64_t(p.a) << 32) | p.b; }
 
+// Tests a member pair's triangles: only triangles inside both members' tight world boxes can
+// meet. Narrowing once more to the box around the other side's candidates is cheap and often
+// shrinks both sides.
+PairOutcome testPair(const MemberGeometry& ga, std::span<const std::uint32_t> subsetA,
+                     const MemberGeometry& gb, std::span<const std::uint32_t> subsetB,
+                     PairScratch& s) {
+  PairOutcome out;
+  const Aabb common = ga.bounds.intersection(gb.bounds);
+  if (common.isEmpty()) return out;
+  const Aabb reachA =
+      collectCandidates(ga, subsetA, common, s.candidateBoxes[0], s.candidateTriangles[0]);
+  if (s.candidateBoxes[0].empty()) return out;
+  const Aabb reachB =
+      collectCandidates(gb, subsetB, reachA, s.candidateBoxes[1], s.candidateTriangles[1]);
+  if (s.candidateBoxes[1].empty()) return out;
+  narrowCandidates(reachB, s.candidateBoxes[0], s.candidateTriangles[0]);
+  s.sweep.overlaps(s.candidateBoxes[0], s.candidateBoxes[1], s.trianglePairs);
+  for (const IndexPair& tp : s.trianglePairs) {
+    const Triangle& ta = ga.triangles[s.candidateTriangles[0][tp.i]];
+    const Triangle& tb = gb.triangles[s.candidateTriangles[1][tp.j]];
+    out.hits += trianglesIntersect(ga.vertices[ta[0]], ga.vertices[ta[1]], ga.vertices[ta[2]],
+                                   gb.vertices[tb[0]], gb.vertices[tb[1]], gb.vertices[tb[2]]);
+  }
+  out.triangleTests = s.trianglePairs.size();
+  return out;
+}
+
+// body(i) for i in [0, count), on the arena's threads when there is one.
+template <class Body>
+void forEach(tbb::task_arena* arena, std::size_t count, const Body& body) {
+  if (!arena || count < 2) {
+    for (std::size_t i = 0; i < count; ++i) body(i);
+    return;
+  }
+  arena->execute([&] { tbb::parallel_for(std::size_t{0}, count, body); });
+}
+
 }  // namespace
 
 CollisionReport ExactPhase::run(std::span<const Pose> poses, const PotentiallyCollidingSets& sets) {
@@ -241,9 +309,31 @@ CollisionReport ExactPhase::run(std::span<const Pose> poses, const PotentiallyCo
       w.sweep.overlaps(w.memberBoxes, w.memberPairs);
 
     if (w.members.size() < members.size()) w.members.resize(members.size());
-    for (std::size_t k = 0; k < members.size(); ++k) w.members[k].ready = false;
 
-    for (std::size_t q = 0; q < w.memberPairs.size(); ++q) {
+    // The pairs to test. Once a pair of objects collides, later sets skip it, and so do later
+    // pairs of this set that name the same objects (members may share an object): those repeats
+    // are tested after the others, in order, so that what is counted does not depend on threads.
+    w.toTest.clear();
+    w.repeats.clear();
+    w.keysInSet.clear();
+    w.isNeeded.assign(members.size(), 0);
+    w.needed.clear();
+    for (std::uint32_t q = 0; q < w.memberPairs.size(); ++q) {
+      const IndexPair& mp = w.memberPairs[q];
+      if (members[mp.i].object == members[mp.j].object) continue;
+      const std::uint64_t key = keyOf(ObjectPair::of(members[mp.i].object, members[mp.j].object));
+      if (severalSets && w.collidingKeys.contains(key)) continue;
+      w.toTest.push_back(q);
+      w.repeats.push_back(severalSets && !w.keysInSet.insert(key).second);
+      for (const std::uint32_t m : {mp.i, mp.j})
+        if (!w.isNeeded[m]) w.isNeeded[m] = 1, w.needed.push_back(m);
+    }
+    forEach(w.arena.get(), w.needed.size(), [&](std::size_t k) {
+      const SetMember& m = members[w.needed[k]];
+      prepare(w.members[w.needed[k]], scene_.meshOf(m.object), m, poses[m.object]);
+    });
+    const auto test = [&](std::size_t k) {
+      const std::uint32_t q = w.toTest[k];
       const IndexPair& mp = w.memberPairs[q];
       std::span<const std::uint32_t> subsetA, subsetB;  // empty: every triangle of the member
       if (set.pairs) {
@@ -251,41 +341,25 @@ CollisionReport ExactPhase::run(std::span<const Pose> poses, const PotentiallyCo
         subsetA = listed.firstTriangles;
         subsetB = listed.secondTriangles;
       }
-      const SetMember& ma = members[mp.i];
-      const SetMember& mb = members[mp.j];
-      if (ma.object == mb.object) continue;
-      const ObjectPair objects = ObjectPair::of(ma.object, mb.object);
-      if (severalSets && w.collidingKeys.contains(keyOf(objects))) continue;
+      return testPair(w.members[mp.i], subsetA, w.members[mp.j], subsetB, w.scratch.local());
+    };
+    w.outcomes.resize(w.toTest.size());
+    forEach(w.arena.get(), w.toTest.size(), [&](std::size_t k) {
+      if (!w.repeats[k]) w.outcomes[k] = test(k);
+    });
 
-      MemberGeometry& ga = w.members[mp.i];
-      MemberGeometry& gb = w.members[mp.j];
-      if (!ga.ready) prepare(ga, scene_.meshOf(ma.object), ma, poses[ma.object]);
-      if (!gb.ready) prepare(gb, scene_.meshOf(mb.object), mb, poses[mb.object]);
-      ++report.pairsTested;
-
-      // Only triangles inside both members' tight world boxes can meet. Narrowing once more to
-      // the box around the other side's candidates is cheap and often shrinks both sides.
-      const Aabb common = ga.bounds.intersection(gb.bounds);
-      if (common.isEmpty()) continue;
-      const Aabb reachA =
-          collectCandidates(ga, subsetA, common, w.candidateBoxes[0], w.candidateTriangles[0]);
-      if (w.candidateBoxes[0].empty()) continue;
-      const Aabb reachB =
-          collectCandidates(gb, subsetB, reachA, w.candidateBoxes[1], w.candidateTriangles[1]);
-      if (w.candidateBoxes[1].empty()) continue;
-      narrowCandidates(reachB, w.candidateBoxes[0], w.candidateTriangles[0]);
-      w.sweep.overlaps(w.candidateBoxes[0], w.candidateBoxes[1], w.trianglePairs);
-
-      std::uint64_t hits = 0;
-      for (const IndexPair& tp : w.trianglePairs) {
-        const Triangle& ta = ga.triangles[w.candidateTriangles[0][tp.i]];
-        const Triangle& tb = gb.triangles[w.candidateTriangles[1][tp.j]];
-        hits += trianglesIntersect(ga.vertices[ta[0]], ga.vertices[ta[1]], ga.vertices[ta[2]],
-                                   gb.vertices[tb[0]], gb.vertices[tb[1]], gb.vertices[tb[2]]);
+    for (std::size_t k = 0; k < w.toTest.size(); ++k) {
+      const IndexPair& mp = w.memberPairs[w.toTest[k]];
+      const ObjectPair objects = ObjectPair::of(members[mp.i].object, members[mp.j].object);
+      if (w.repeats[k]) {
+        if (w.collidingKeys.contains(keyOf(objects))) continue;
+        w.outcomes[k] = test(k);
       }
-      report.triangleTests += w.trianglePairs.size();
-      if (hits == 0) continue;
-      report.collidingTrianglePairs += hits;
+      const PairOutcome& outcome = w.outcomes[k];
+      ++report.pairsTested;
+      report.triangleTests += outcome.triangleTests;
+      if (outcome.hits == 0) continue;
+      report.collidingTrianglePairs += outcome.hits;
       w.colliding.push_back(objects);
       if (severalSets) w.collidingKeys.insert(keyOf(objects));
     }

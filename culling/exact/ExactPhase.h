@@ -16,8 +16,10 @@ namespace cdb {
 
 class ExactPhase {
  public:
-  // Caches per-mesh data; `scene` must outlive the phase.
-  explicit ExactPhase(const SceneGeometry& scene);
+  // Caches per-mesh data; `scene` must outlive the phase. With several threads (0: every core)
+  // the members of a set are prepared, and its pairs tested, on that many; what is found and
+  // counted is the same at any number.
+  explicit ExactPhase(const SceneGeometry& scene, int threads = 1);
   ~ExactPhase();
   ExactPhase(ExactPhase&&) noexcept;
   // `poses` holds one pose per scene object. An object pair found in several sets is reported

@@ -162,6 +162,63 @@ TEST(ExactPhase, PairInSeveralSetsIsReportedOnce) {
   EXPECT_EQ(got.pairsTested, 2 * once.pairsTested - once.collidingPairs.size());
 }
 
+TEST(ExactPhase, ThreadsChangeNothingItFindsOrCounts) {
+  // Sets that exercise every skip: a pair in several sets, members sharing an object inside one
+  // set (each object split in two halves), listed pairs. Reports must be equal at any thread count.
+  const auto s = testing::randomTori(40, 2.5, testing::kRepeats, 53);
+  std::vector<ExactPhase> phases;
+  for (const int threads : {1, 2, 4}) phases.emplace_back(s.scene, threads);
+  std::size_t colliding = 0;
+  for (const auto& poses : s.frames) {
+    const auto all = oneSetOfAll(s.scene.objectCount());
+    PotentiallyCollidingSet halves;
+    for (ObjectId o = 0; o < s.scene.objectCount(); ++o) {
+      const std::uint32_t n = static_cast<std::uint32_t>(s.scene.meshOf(o).triangleCount());
+      for (const std::uint32_t part : {0u, 1u}) {
+        SetMember member{o, {}};
+        for (std::uint32_t t = part * n / 2; t < (part + 1) * n / 2; ++t)
+          member.triangles.push_back(t);
+        halves.members.push_back(std::move(member));
+      }
+    }
+    PotentiallyCollidingSets sets{halves};
+    for (PotentiallyCollidingSet& set : overlapComponents(s.scene, poses)) sets.push_back(set);
+    sets.push_back(all[0]);
+    PotentiallyCollidingSet listed = all[0];
+    listed.pairs = std::vector<MemberPair>{};
+    for (std::uint32_t a = 0; a + 1 < listed.members.size(); a += 2)
+      listed.pairs->push_back({a, a + 1, {}, {}});
+    sets.push_back(listed);
+
+    const CollisionReport one = phases[0].run(poses, sets);
+    colliding += one.collidingPairs.size();
+    for (std::size_t k = 1; k < phases.size(); ++k) {
+      const CollisionReport got = phases[k].run(poses, sets);
+      EXPECT_EQ(got.collidingPairs, one.collidingPairs);
+      EXPECT_EQ(got.collidingTrianglePairs, one.collidingTrianglePairs);
+      EXPECT_EQ(got.pairsTested, one.pairsTested);
+      EXPECT_EQ(got.triangleTests, one.triangleTests);
+    }
+  }
+  EXPECT_GT(colliding, 0u);
+}
+
+TEST(ExactPhase, AfterACollisionLaterMembersOfTheSameObjectsAreSkipped) {
+  // Cube 0 twice in one set, overlapping cube 1: once (0, 1) is found, the second member of cube 0
+  // is not tested against cube 1 again (with several sets, as then found pairs are remembered).
+  const SceneGeometry scene = testing::unitCubes(3);
+  std::vector<Pose> poses(3);
+  poses[1].translation = {0.5, 0.25, 0};
+  poses[2].translation = {5, 0, 0};
+  const PotentiallyCollidingSets sets{{{{0, {}}, {0, {}}, {1, {}}}}, {{{2, {}}}}};
+  for (const int threads : {1, 2}) {
+    ExactPhase exact(scene, threads);
+    const CollisionReport got = exact.run(poses, sets);
+    EXPECT_EQ(got.collidingPairs, (std::vector<ObjectPair>{{0, 1}}));
+    EXPECT_EQ(got.pairsTested, 1u) << threads << " threads";
+  }
+}
+
 TEST(ExactPhase, CubesSharingAFaceTouch) {
   const SceneGeometry scene = testing::unitCubes(3);
   std::vector<Pose> poses(3);
