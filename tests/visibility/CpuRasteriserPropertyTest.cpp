@@ -233,11 +233,11 @@ struct Tally {
 
 void writePiece(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle& t,
                 RasterWork& work) {
-  writeTriangles(buffer, pass, std::span<const ScreenTriangle>(&t, 1), work);
+  writePieces(buffer, pass, std::span<const ScreenTriangle>(&t, 1), work);
 }
 void writePiece(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenQuad& q,
                 RasterWork& work) {
-  writeQuads(buffer, pass, std::span<const ScreenQuad>(&q, 1), work);
+  writePieces(buffer, pass, std::span<const ScreenQuad>(&q, 1), work);
 }
 bool testFindsOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle& t,
                        RasterWork& work) {
@@ -267,7 +267,7 @@ void checkPiece(Piece t, int resolution, float sign, Tally& tally) {
   const float farStored = sign * farKey;
   const Window w = windowOf(t, resolution);
   CpuDepthBuffer buffer;
-  buffer.resize(resolution);
+  buffer.place(resolution, 0, 0, (resolution + 7) / 8, (resolution + 7) / 8);
   RasterWork work;
 
   // The pixel box, and whether the rasteriser takes all of it (smallBox).

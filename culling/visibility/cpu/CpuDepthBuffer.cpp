@@ -4,14 +4,8 @@
 
 namespace cdb {
 
-void CpuDepthBuffer::resize(int resolution, bool othersPlanes) {
-  const int blocks = (resolution + kBlock - 1) / kBlock;
-  place(resolution, 0, 0, blocks, blocks, othersPlanes);
-}
-
 void CpuDepthBuffer::place(int resolution, int bx0, int by0, int nx, int ny, bool othersPlanes) {
   const int frameBlocks = (resolution + kBlock - 1) / kBlock;
-  resolution_ = resolution;
   bx0_ = bx0, by0_ = by0;
   nx_ = std::max(0, std::min(nx, frameBlocks - bx0));
   ny_ = std::max(0, std::min(ny, frameBlocks - by0));

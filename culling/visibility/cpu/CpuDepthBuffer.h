@@ -24,8 +24,6 @@ class CpuDepthBuffer {
 
   static constexpr std::uint32_t kNoObject = ~std::uint32_t{0};
 
-  // The whole resolution x resolution frame.
-  void resize(int resolution, bool othersPlanes = false);
   // Blocks [bx0, bx0 + nx) x [by0, by0 + ny) of a resolution x resolution frame (nx, ny clipped to
   // the frame), with the planes of an order-independent pass or not. Memory is only allocated
   // when the window grows; contents are undefined until clear().
@@ -33,7 +31,6 @@ class CpuDepthBuffer {
   // Every pixel of the window at `value` (stored depth units; written by no object).
   void clear(float value);
 
-  [[nodiscard]] int resolution() const { return resolution_; }
   // The window, in blocks of the frame (inclusive), and in pixels (inclusive, inside the frame).
   [[nodiscard]] int blockX0() const { return bx0_; }
   [[nodiscard]] int blockY0() const { return by0_; }
@@ -43,9 +40,6 @@ class CpuDepthBuffer {
   [[nodiscard]] int pixelY0() const { return by0_ * kBlock; }
   [[nodiscard]] int pixelX1() const { return px1_; }
   [[nodiscard]] int pixelY1() const { return py1_; }
-  [[nodiscard]] bool holds(int x, int y) const {
-    return x >= pixelX0() && x <= px1_ && y >= pixelY0() && y <= py1_;
-  }
 
   // Index of block (bx, by) of the frame, which must lie in the window.
   [[nodiscard]] std::size_t blockIndex(int bx, int by) const {
@@ -86,7 +80,6 @@ class CpuDepthBuffer {
   [[nodiscard]] float at(int x, int y) const;
 
  private:
-  int resolution_ = 0;
   int bx0_ = 0, by0_ = 0, nx_ = 0, ny_ = 0;
   int px1_ = -1, py1_ = -1;
   std::vector<float> data_;

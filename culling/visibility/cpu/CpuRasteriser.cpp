@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 HWY_BEFORE_NAMESPACE();
@@ -488,18 +490,6 @@ HWY_INLINE bool drawSetUp(CpuDepthBuffer& buffer, const RasterPass& pass, const 
   return drawBlocks<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
 }
 
-// One piece (a triangle, or a quad) tested or written in the blocks of `mask`: true when a test
-// finds an occluded sample.
-template <bool kIsTest, bool kOthers, class Piece>
-HWY_INLINE bool drawPiece(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
-                          const Writer& writer, RasterWork& work, BlockMask mask = kAllBlocks,
-                          PendingBlocks* pending = nullptr) {
-  TriangleRaster r;
-  if (!setupBounds(t, pass, kIsTest ? RasterRole::Test : RasterRole::Write, r)) return false;
-  bool coverage = false;
-  return drawSetUp<kIsTest, kOthers>(buffer, pass, t, r, coverage, mask, writer, work, pending);
-}
-
 // Pieces prepared to be written later, block by block: those with a pixel in the window.
 template <class Piece>
 std::size_t prepare(const CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
@@ -539,159 +529,82 @@ void writePreparedPieces(CpuDepthBuffer& buffer, const RasterPass& pass,
                          const Writer& writer, RasterWork& work) {
   for (std::size_t i = 0; i < count; ++i) {
     PreparedWrite<Piece>& w = writes[i];
-    if ((w.blocks & mask) == 0) continue;
-    if (smallBox(pass, w.raster)) {
-      drawSmall<!kTest, kOthers>(buffer, pass, w.raster, mask, writer, work);
-      continue;
-    }
-    if (decidedByBlocks<!kTest>(buffer, pass, w.raster, mask)) continue;
-    if (!w.coverage) {
-      setupCoverage(w.piece, pass, RasterRole::Write, w.raster);
-      w.coverage = true;
-    }
-    drawBlocks<!kTest, kOthers>(buffer, pass, w.raster, mask, writer, work);
+    if ((w.blocks & mask) != 0)
+      drawSetUp<!kTest, kOthers>(buffer, pass, w.piece, w.raster, w.coverage, mask, writer, work,
+                                 nullptr);
   }
 }
-template <class Piece>
-void writePreparedAny(CpuDepthBuffer& buffer, const RasterPass& pass, PreparedWrite<Piece>* writes,
-                      std::size_t count, BlockMask mask, std::uint32_t object, RasterWork& work) {
-  if (pass.orderIndependent)
-    writePreparedPieces<true>(buffer, pass, writes, count, mask, writerOf(object), work);
-  else
-    writePreparedPieces<false>(buffer, pass, writes, count, mask, writerOf(object), work);
+
+// The pieces (at most kMostTestPieces) tested in order as one piece, up to the first with an
+// occluded sample. With `pending`, in two rounds that share each piece's set-up: every piece
+// against what the buffer holds, then, all visible there, every piece again in the blocks of
+// pending->read, resolving them (one occluded in the first round leaves the pending writes
+// undrawn). With `each`, every piece is its own test (each[i] cleared when occluded; a piece
+// whose entry is 0 is not tested), both rounds piece by piece, as without `pending`.
+template <bool kOthers, class Piece>
+std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
+                              std::size_t count, const Writer& writer, RasterWork& work,
+                              PendingBlocks* pending, std::uint8_t* each) {
+  if (each != nullptr || pending == nullptr) {
+    for (std::size_t i = 0; i < count; ++i) {
+      TriangleRaster r;
+      bool coverage = false;
+      if ((each == nullptr || each[i]) && setupBounds(pieces[i], pass, RasterRole::Test, r) &&
+          (drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], r, coverage, kAllBlocks, writer, work,
+                                     nullptr) ||
+           (pending && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], r, coverage,
+                                                 pending->read, writer, work, pending)))) {
+        if (each == nullptr) return i;
+        each[i] = 0;
+      }
+    }
+    return count;
+  }
+  // Uninitialised: set-ups are written before they are read.
+  alignas(TriangleRaster) unsigned char storage[kMostTestPieces * sizeof(TriangleRaster)];
+  auto* kept = reinterpret_cast<TriangleRaster*>(storage);
+  bool setUp[kMostTestPieces], coverage[kMostTestPieces];
+  for (std::size_t i = 0; i < count; ++i) {
+    setUp[i] = setupBounds(pieces[i], pass, RasterRole::Test, *std::construct_at(kept + i));
+    coverage[i] = false;
+    if (setUp[i] && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], kept[i], coverage[i],
+                                              kAllBlocks, writer, work, nullptr))
+      return i;
+  }
+  for (std::size_t i = 0; i < count; ++i)
+    if (setUp[i] && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], kept[i], coverage[i],
+                                              pending->read, writer, work, pending))
+      return i;
+  return count;
 }
+
+// The exported entry points: kOthers chosen by the pass.
+#define CDB_WITH_OTHERS(call, ...) \
+  (pass.orderIndependent ? call<true>(__VA_ARGS__) : call<false>(__VA_ARGS__))
 void WritePreparedTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
                             PreparedWrite<ScreenTriangle>* writes, std::size_t count,
                             BlockMask mask, std::uint32_t object, RasterWork& work) {
-  writePreparedAny(buffer, pass, writes, count, mask, object, work);
+  CDB_WITH_OTHERS(writePreparedPieces, buffer, pass, writes, count, mask, writerOf(object), work);
 }
 void WritePreparedQuads(CpuDepthBuffer& buffer, const RasterPass& pass,
                         PreparedWrite<ScreenQuad>* writes, std::size_t count, BlockMask mask,
                         std::uint32_t object, RasterWork& work) {
-  writePreparedAny(buffer, pass, writes, count, mask, object, work);
-}
-
-// The pieces tested in order as one piece, up to the first with an occluded sample. With
-// `pending`, in two rounds that share each piece's set-up (a chunk's worth kept): every piece
-// against what the buffer holds, then, all visible there, every piece again in the blocks of
-// pending->read, resolving them (one occluded in the first round leaves the pending writes
-// undrawn).
-template <bool kOthers, class Piece>
-std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
-                              std::size_t count, const Writer& writer, RasterWork& work,
-                              PendingBlocks* pending) {
-  if (pending == nullptr) {
-    for (std::size_t i = 0; i < count; ++i)
-      if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work)) return i;
-    return count;
-  }
-  constexpr std::size_t kKept = std::is_same_v<Piece, ScreenQuad> ? 6 : 64;
-  // Uninitialised: set-ups are written before they are read.
-  alignas(TriangleRaster) unsigned char storage[kKept * sizeof(TriangleRaster)];
-  auto* kept = reinterpret_cast<TriangleRaster*>(storage);
-  bool setUp[kKept], coverage[kKept];
-  for (std::size_t i = 0; i < count; ++i) {
-    if (i >= kKept) {
-      if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work)) return i;
-      continue;
-    }
-    TriangleRaster& r = *std::construct_at(kept + i);
-    setUp[i] = setupBounds(pieces[i], pass, RasterRole::Test, r);
-    coverage[i] = false;
-    if (setUp[i] && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], r, coverage[i], kAllBlocks,
-                                              writer, work, nullptr))
-      return i;
-  }
-  for (std::size_t i = 0; i < count; ++i) {
-    if (i >= kKept) {
-      if (drawPiece<kTest, kOthers>(buffer, pass, pieces[i], writer, work, pending->read,
-                                    pending))
-        return i;
-      continue;
-    }
-    if (setUp[i] && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], kept[i], coverage[i],
-                                              pending->read, writer, work, pending))
-      return i;
-  }
-  return count;
-}
-template <class Piece>
-std::size_t testAny(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
-                    std::size_t count, std::uint32_t object, RasterWork& work,
-                    PendingBlocks* pending) {
-  return pass.orderIndependent
-             ? testUntilOccluded<true>(buffer, pass, pieces, count, writerOf(object), work, pending)
-             : testUntilOccluded<false>(buffer, pass, pieces, count, writerOf(object), work,
-                                        pending);
+  CDB_WITH_OTHERS(writePreparedPieces, buffer, pass, writes, count, mask, writerOf(object), work);
 }
 std::size_t TestUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                               const ScreenTriangle* triangles, std::size_t count,
-                              std::uint32_t object, RasterWork& work, PendingBlocks* pending) {
-  return testAny(buffer, pass, triangles, count, object, work, pending);
+                              std::uint32_t object, RasterWork& work, PendingBlocks* pending,
+                              std::uint8_t* each) {
+  return CDB_WITH_OTHERS(testUntilOccluded, buffer, pass, triangles, count, writerOf(object), work,
+                         pending, each);
 }
 std::size_t TestQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                    const ScreenQuad* quads, std::size_t count, std::uint32_t object,
                                    RasterWork& work, PendingBlocks* pending) {
-  return testAny(buffer, pass, quads, count, object, work, pending);
+  return CDB_WITH_OTHERS(testUntilOccluded, buffer, pass, quads, count, writerOf(object), work,
+                         pending, nullptr);
 }
-
-// A test triangle against what the buffer holds, then, visible there, again in the blocks of
-// pending->read, resolving them: both steps share one set-up.
-template <bool kOthers>
-HWY_INLINE bool testInTwoSteps(CpuDepthBuffer& buffer, const RasterPass& pass,
-                               const ScreenTriangle& t, const Writer& writer, RasterWork& work,
-                               PendingBlocks* pending) {
-  TriangleRaster r;
-  if (!setupBounds(t, pass, RasterRole::Test, r)) return false;
-  bool coverage = false;
-  return drawSetUp<kTest, kOthers>(buffer, pass, t, r, coverage, kAllBlocks, writer, work,
-                                   nullptr) ||
-         drawSetUp<kTest, kOthers>(buffer, pass, t, r, coverage, pending->read, writer, work,
-                                   pending);
-}
-
-template <bool kOthers>
-void testEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
-              std::size_t count, std::uint8_t* fullyVisible, const Writer& writer, RasterWork& work,
-              PendingBlocks* pending) {
-  for (std::size_t i = 0; i < count; ++i)
-    if (fullyVisible[i] &&
-        (pending != nullptr
-             ? testInTwoSteps<kOthers>(buffer, pass, triangles[i], writer, work, pending)
-             : drawPiece<kTest, kOthers>(buffer, pass, triangles[i], writer, work)))
-      fullyVisible[i] = 0;
-}
-void TestEach(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
-              std::size_t count, std::uint8_t* fullyVisible, std::uint32_t object, RasterWork& work,
-              PendingBlocks* pending) {
-  if (pass.orderIndependent)
-    testEach<true>(buffer, pass, triangles, count, fullyVisible, writerOf(object), work, pending);
-  else
-    testEach<false>(buffer, pass, triangles, count, fullyVisible, writerOf(object), work, pending);
-}
-
-template <bool kOthers, class Piece>
-void writeAll(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
-              std::size_t count, const Writer& writer, RasterWork& work) {
-  for (std::size_t i = 0; i < count; ++i)
-    drawPiece<!kTest, kOthers>(buffer, pass, pieces[i], writer, work);
-}
-template <class Piece>
-void writeAny(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
-              std::size_t count, std::uint32_t object, RasterWork& work) {
-  if (pass.orderIndependent)
-    writeAll<true>(buffer, pass, pieces, count, writerOf(object), work);
-  else
-    writeAll<false>(buffer, pass, pieces, count, writerOf(object), work);
-}
-void WriteAll(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenTriangle* triangles,
-              std::size_t count, std::uint32_t object, RasterWork& work) {
-  writeAny(buffer, pass, triangles, count, object, work);
-}
-void WriteQuads(CpuDepthBuffer& buffer, const RasterPass& pass, const ScreenQuad* quads,
-                std::size_t count, std::uint32_t object, RasterWork& work) {
-  writeAny(buffer, pass, quads, count, object, work);
-}
+#undef CDB_WITH_OTHERS
 
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
 
@@ -703,46 +616,44 @@ HWY_AFTER_NAMESPACE();
 namespace cdb {
 
 HWY_EXPORT(TestUntilOccluded);
-HWY_EXPORT(TestEach);
-HWY_EXPORT(WriteAll);
 HWY_EXPORT(TestQuadsUntilOccluded);
-HWY_EXPORT(WriteQuads);
 HWY_EXPORT(PrepareTriangles);
 HWY_EXPORT(PrepareQuads);
 HWY_EXPORT(WritePreparedTriangles);
 HWY_EXPORT(WritePreparedQuads);
 HWY_EXPORT(TargetName);
 
+namespace {
+template <class Piece>
+std::span<const Piece> boundedTest(std::span<const Piece> pieces) {
+  if (pieces.size() > kMostTestPieces)
+    throw std::invalid_argument("a test of " + std::to_string(pieces.size()) + " pieces: at most " +
+                                std::to_string(kMostTestPieces));
+  return pieces;
+}
+}  // namespace
+
 std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                        std::span<const ScreenTriangle> triangles, RasterWork& work,
                                        std::uint32_t object, PendingBlocks* pending) {
+  boundedTest(triangles);
   return HWY_DYNAMIC_DISPATCH(TestUntilOccluded)(buffer, pass, triangles.data(), triangles.size(),
-                                                 object, work, pending);
+                                                 object, work, pending, nullptr);
 }
 
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
                       RasterWork& work, std::uint32_t object, PendingBlocks* pending) {
-  HWY_DYNAMIC_DISPATCH(TestEach)
-  (buffer, pass, triangles.data(), triangles.size(), fullyVisible, object, work, pending);
-}
-
-void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
-                    std::span<const ScreenTriangle> triangles, RasterWork& work,
-                    std::uint32_t object) {
-  HWY_DYNAMIC_DISPATCH(WriteAll)(buffer, pass, triangles.data(), triangles.size(), object, work);
+  (void)HWY_DYNAMIC_DISPATCH(TestUntilOccluded)(buffer, pass, triangles.data(), triangles.size(),
+                                                object, work, pending, fullyVisible);
 }
 
 std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                    std::span<const ScreenQuad> quads, RasterWork& work,
                                    std::uint32_t object, PendingBlocks* pending) {
+  boundedTest(quads);
   return HWY_DYNAMIC_DISPATCH(TestQuadsUntilOccluded)(buffer, pass, quads.data(), quads.size(),
                                                       object, work, pending);
-}
-
-void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,
-                RasterWork& work, std::uint32_t object) {
-  HWY_DYNAMIC_DISPATCH(WriteQuads)(buffer, pass, quads.data(), quads.size(), object, work);
 }
 
 std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,

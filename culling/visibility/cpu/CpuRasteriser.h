@@ -6,6 +6,8 @@
 // tests stop at their first occluded sample; block bounds accept or reject whole blocks. A piece
 // reaching beyond the window is drawn only inside it, with exactly the coverage and keys it has in
 // the whole frame.
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -48,10 +50,11 @@ struct PendingBlocks {
 // every function takes the object whose pieces it draws: a test reads the nearest value any other
 // object wrote, a write keeps the nearest value, its object and the others' nearest.
 
-// Tests the triangles in order as one piece; returns the index of the first with an occluded
-// sample (at or behind the stored depth), or triangles.size() when the piece is fully visible.
-// With `pending`, every triangle against what the buffer holds first and, all visible there,
-// every one again in the blocks of pending->read.
+// Tests the triangles (at most kMostTestPieces) in order as one piece; returns the index of the
+// first with an occluded sample (at or behind the stored depth), or triangles.size() when the
+// piece is fully visible. With `pending`, every triangle against what the buffer holds first and,
+// all visible there, every one again in the blocks of pending->read.
+inline constexpr std::size_t kMostTestPieces = 64;
 [[nodiscard]] std::size_t testTrianglesUntilOccluded(
     CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenTriangle> triangles,
     RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject,
@@ -63,19 +66,12 @@ void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
                       RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject,
                       PendingBlocks* pending = nullptr);
-// Writes the triangles in order (depth test "nearer than stored").
-void writeTriangles(CpuDepthBuffer& buffer, const RasterPass& pass,
-                    std::span<const ScreenTriangle> triangles, RasterWork& work,
-                    std::uint32_t object = CpuDepthBuffer::kNoObject);
-
 // The same for quads (ScreenQuad; conservative passes only), each set up and visited as one piece.
 [[nodiscard]] std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                                  std::span<const ScreenQuad> quads,
                                                  RasterWork& work,
                                                  std::uint32_t object = CpuDepthBuffer::kNoObject,
                                                  PendingBlocks* pending = nullptr);
-void writeQuads(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenQuad> quads,
-                RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject);
 
 // Writes prepared once and drawn block by block (a write drawn where tests need it, in parts).
 // A piece with its pixel box and key bounds set up (step 1), the blocks of the window its box
@@ -101,6 +97,20 @@ void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
 void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
                    std::span<PreparedWrite<ScreenQuad>> writes, BlockMask mask, RasterWork& work,
                    std::uint32_t object = CpuDepthBuffer::kNoObject);
+
+// Writes the pieces in order, everywhere (depth test "nearer than stored"): prepared and drawn in
+// every block, a chunk at a time.
+template <class Piece>
+void writePieces(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const Piece> pieces,
+                 RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject) {
+  constexpr std::size_t kChunk = 64;
+  std::array<PreparedWrite<Piece>, kChunk> prepared;
+  for (std::size_t at = 0; at < pieces.size(); at += kChunk) {
+    const std::size_t n = prepareWrites(
+        buffer, pass, pieces.subspan(at, std::min(kChunk, pieces.size() - at)), prepared.data());
+    writePrepared(buffer, pass, std::span(prepared.data(), n), kAllBlocks, work, object);
+  }
+}
 
 // The instruction set the loops run with ("AVX2", "AVX3", "SSE4", ...).
 [[nodiscard]] const char* rasteriserTarget();

@@ -27,22 +27,16 @@ BlockMask blocksUnder(const CpuDepthBuffer& depth, const PixelRect& rect) {
   return mask;
 }
 
-// Whether every block of `mask` has all its stored keys behind `key` (in the pass' key order):
-// a test whose farthest key that is sees nothing nearer.
-bool storedBehind(const CpuDepthBuffer& depth, BlockMask mask, float sign, float key) {
+// Whether every block of `mask` decides an item by its stored keys alone (in the pass' key
+// order): a test whose farthest key is `key` sees nothing nearer (all stored keys behind it), a
+// write whose nearest key is `key` changes nothing (all at or in front of it).
+template <bool kIsTest>
+bool storedDecides(const CpuDepthBuffer& depth, BlockMask mask, float sign, float key) {
   for (BlockMask m = mask; m != 0; m &= m - 1) {
     const auto i = static_cast<std::size_t>(std::countr_zero(m));
-    if (!(key < (sign > 0 ? depth.blockMin(i) : -depth.blockMax(i)))) return false;
-  }
-  return true;
-}
-
-// Whether every block of `mask` has all its stored keys at or in front of `key`: a write whose
-// nearest key that is changes nothing there.
-bool storedInFront(const CpuDepthBuffer& depth, BlockMask mask, float sign, float key) {
-  for (BlockMask m = mask; m != 0; m &= m - 1) {
-    const auto i = static_cast<std::size_t>(std::countr_zero(m));
-    if (!(key >= (sign > 0 ? depth.blockMax(i) : -depth.blockMin(i)))) return false;
+    const float nearest = sign > 0 ? depth.blockMin(i) : -depth.blockMax(i);
+    const float farthest = sign > 0 ? depth.blockMax(i) : -depth.blockMin(i);
+    if (!(kIsTest ? key < nearest : key >= farthest)) return false;
   }
   return true;
 }
@@ -67,10 +61,11 @@ void writeItem(CpuDepthBuffer& depth, const CpuScene& scene, const CpuRun& run, 
   piecesOf(scene, run, item, depth, pieces);
   const RasterPass& raster = run.recording.passes[item.pass].raster;
   if (pieces.areQuads)
-    writeQuads(depth, raster, {pieces.quads.data(), pieces.count}, work.raster, item.object);
+    writePieces<ScreenQuad>(depth, raster, {pieces.quads.data(), pieces.count}, work.raster,
+                            item.object);
   else
-    writeTriangles(depth, raster, {pieces.triangles.data(), pieces.count}, work.raster,
-                   item.object);
+    writePieces<ScreenTriangle>(depth, raster, {pieces.triangles.data(), pieces.count}, work.raster,
+                                item.object);
   ++work.writesRasterised;
 }
 
@@ -207,12 +202,14 @@ bool answersEachTriangle(const CpuItem& item, const CpuPieces& pieces) {
 
 // Tests an item's pieces against what the tile holds (with `pending`: then again where pending
 // writes it may read are, drawing those first, block by block) and clears the answers it finds
-// occluded.
+// occluded. With the early-out, a batch's triangles another tile found occluded are not tested.
 void testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
-                const CpuItem& item, std::uint8_t* visible, CpuAnswers answers, CpuTileWork& work,
+                const CpuItem& item, bool earlyOut, CpuAnswers answers, CpuTileWork& work,
                 PendingBlocks* pending = nullptr) {
   if (answersEachTriangle(item, pieces)) {
-    // One answer per triangle.
+    std::uint8_t visible[kChunkTriangles];
+    for (std::size_t i = 0; i < pieces.count; ++i)
+      visible[i] = !earlyOut || answers.visible(item.answer + pieces.offset[i]);
     testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster,
                      item.object, pending);
     for (std::size_t i = 0; i < pieces.count; ++i)
@@ -236,7 +233,6 @@ struct TestResolution {
   const CpuItem& item;
   bool orderIndependent;
   CpuTileWork& work;
-  bool drew = false;
 };
 bool resolveForTest(void* context, std::size_t block, float zHi) {
   auto& t = *static_cast<TestResolution*>(context);
@@ -253,7 +249,6 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
       return true;
     }
     drawPending(t.tile, t.scene, p, bit, t.work);
-    t.drew = true;
     return false;
   });
   state.pendingNearest[block] = nearest;
@@ -296,7 +291,6 @@ void enterPass(TileAt tile, const CpuScene& scene, const RasterPass& raster, Cpu
 CpuTileWork& CpuTileWork::operator+=(const CpuTileWork& o) {
   raster += o.raster;
   tests += o.tests, testsByBounds += o.testsByBounds, testsSkipped += o.testsSkipped;
-  testsAfterResolving += o.testsAfterResolving;
   writes += o.writes, writesRasterised += o.writesRasterised;
   return *this;
 }
@@ -335,7 +329,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       const BlockMask blocks = blocksUnder(state.depth, item.rect.within(inTile));
       // At or behind everything stored under it (pending writes only add nearer keys): it
       // changes nothing.
-      if (storedInFront(state.depth, blocks, raster.sign, item.kLo)) continue;
+      if (storedDecides<false>(state.depth, blocks, raster.sign, item.kLo)) continue;
       // A pending write keeps its prepared pieces: a tile with this many (thousands of node boxes
       // in one tile at a low resolution) has them drawn instead, which leaves the same depths.
       if (state.pending.size() >= evaluation.mostPendingInTile) {
@@ -358,33 +352,23 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
         blocksReadingPending(state, blocks, item.kHi, raster.orderIndependent, item.object);
     const bool readsPending = reading != 0;
     if (evaluation.demandDriven && !readsPending &&
-        storedBehind(state.depth, blocks, raster.sign, item.kHi)) {
+        storedDecides<true>(state.depth, blocks, raster.sign, item.kHi)) {
       ++work.testsByBounds;
       continue;
     }
     CpuPieces pieces;
     piecesOf(scene, run, item, state.depth, pieces);
-    // A batch's triangles another tile found occluded are not tested again (with the early-out).
-    std::uint8_t visible[kChunkTriangles];
-    if (answersEachTriangle(item, pieces))
-      for (std::size_t t = 0; t < pieces.count; ++t)
-        visible[t] = !evaluation.earlyOut || answers.visible(item.answer + pieces.offset[t]);
     if (!readsPending) {
-      testPieces(state.depth, pieces, raster, item, visible, answers, work);
+      testPieces(state.depth, pieces, raster, item, evaluation.earlyOut, answers, work);
       continue;
     }
     // Against what the tile holds first: occluded there, the pending writes stay pending. Visible
     // there, the blocks with pending writes it may read are tested again, each once the writes
     // that can lie in front of the test's piece are drawn there, until a piece is occluded. (The
     // two steps share each piece's set-up; a batch's triangles take both one triangle at a time.)
-    PendingBlocks unresolved;
-    unresolved.blocks = reading;
-    unresolved.read = reading;
     TestResolution resolution{at, scene, item, raster.orderIndependent, work};
-    unresolved.resolve = resolveForTest;
-    unresolved.context = &resolution;
-    testPieces(state.depth, pieces, raster, item, visible, answers, work, &unresolved);
-    if (resolution.drew) ++work.testsAfterResolving;
+    PendingBlocks unresolved{reading, reading, resolveForTest, &resolution};
+    testPieces(state.depth, pieces, raster, item, evaluation.earlyOut, answers, work, &unresolved);
     if (state.pendingBlocks == 0) clearPending(at);
   }
   releasePrepared(at);

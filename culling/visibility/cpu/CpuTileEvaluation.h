@@ -1,24 +1,14 @@
 #pragma once
 // Step 2 of running a recording: one screen tile of a chain (passes sharing a depth buffer)
-// evaluated on its own, on demand. A depth value matters only where a later test of the same pass
-// reads it and cannot be decided without it, so the tile's items are walked in issue order and:
-//  - a write is appended to the pending lists of the 8x8 blocks of its rectangle (with its key
-//    range), not drawn; one whose nearest key is at or behind everything stored under it changes
-//    nothing and goes;
-//  - a test of an answer another tile already found occluded is skipped (the early-out: a piece
-//    is fully visible only when every tile says so);
-//  - a test is decided without pixels when no write pending in its blocks can lie in front of it
-//    (its nearest key at most the test's farthest) and the stored depths under it are all behind
-//    it; otherwise it is tested against what the tile holds, and if visible there, tested again
-//    in the blocks with such writes, each block once the writes that can lie in front of the
-//    test's piece are drawn into it (set up once per tile, kept for the blocks a later test may
-//    need), stopping at the first occluded sample: writes are drawn only in blocks where a test
-//    has pixels and still needs them.
-// In an order-independent pass a test of object i reads no pending write of i's own.
-// A write no undecided test reads is never rasterised. The answer is the one drawing every write
-// and testing every piece gives: stored depth is the nearest of what was written (in one pass'
-// order, so a write drawn later or in parts leaves the same), and a pending write left out can only
-// be behind the test wherever both have pixels.
+// evaluated on its own, on demand, walking the tile's items in issue order. A write is made
+// pending in the 8x8 blocks of its rectangle (dropped where it is behind everything stored). A
+// test another tile found occluded is skipped (the early-out); one that no pending write can lie
+// in front of, and everything stored lies behind, is decided by bounds; otherwise it is tested
+// against what the tile holds and, visible there, again in the blocks with pending writes it may
+// read, each drawn there first (prepared once per tile). In an order-independent pass a test of
+// object i reads no pending write of i's own. A write no undecided test reads is never drawn; the
+// answer is that of drawing every write and testing every piece, since stored depth is the nearest
+// of what was written and a pending write left out is behind the test wherever both have pixels.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -44,10 +34,8 @@ struct CpuEvaluation {
   bool demandDriven = true;  // off: every write rasterised where it is drawn, every test tested
   bool earlyOut = true;      // a test found occluded in one tile is skipped in the others
   // Writes left pending in one block, and in one tile, before those are drawn (a test scans the
-  // writes pending in its blocks, and a pending write keeps its prepared pieces). On env2 at
-  // 800 px cullide wrote 1.60M pixels at 1,024 a block, 1.92M at 512 and 2.77M at 256; without the
-  // tile's limit a run's peak memory was 2.2 GB, 1.3 GB with 4,096 (with the prepared pieces in
-  // one storage per tile; one per thread since, CpuPreparedScratch: 172 MB).
+  // writes pending in its blocks, and a pending write keeps its prepared pieces; measured in the
+  // README, "The cpu backend: only the work a test reads").
   std::size_t mostPendingInBlock = 1024;
   std::size_t mostPendingInTile = 4096;
 };
@@ -87,8 +75,7 @@ struct CpuPreparedPieces {
 };
 
 // The prepared pieces of the tile a thread evaluates: one storage per thread, reused tile after
-// tile, so it stays in cache and is allocated once (one per tile: 484 MB peak on env2 at 800 px
-// against 172 MB, each tile's first use of it page faults).
+// tile, so it stays in cache and is allocated once.
 struct CpuPreparedScratch {
   CpuPreparedPieces<ScreenTriangle> triangles;
   CpuPreparedPieces<ScreenQuad> quads;
@@ -173,18 +160,17 @@ struct CpuTileState {
     return none;
   }();
   BlockMask pendingBlocks = 0;  // blocks with a write pending
-  float sign = 0.f;         // the key order of the pass of its last item (0: none yet)
-  std::uint64_t chain = 0;  // which chain's tile it holds (0: none)
+  float sign = 0.f;             // the key order of the pass of its last item (0: none yet)
+  std::uint64_t chain = 0;      // which chain's tile it holds (0: none)
 };
 
 // What tiles did, summed into VisibilityCounters.
 struct CpuTileWork {
   RasterWork raster;
-  std::uint64_t tests = 0;                // (test item, tile) visits
-  std::uint64_t testsByBounds = 0;        // of them decided without pixels
-  std::uint64_t testsSkipped = 0;         // of them skipped: answered elsewhere
-  std::uint64_t testsAfterResolving = 0;  // tested again after drawing pending writes
-  std::uint64_t writes = 0;               // (write item, tile) visits
+  std::uint64_t tests = 0;          // (test item, tile) visits
+  std::uint64_t testsByBounds = 0;  // of them decided without pixels
+  std::uint64_t testsSkipped = 0;   // of them skipped: answered elsewhere
+  std::uint64_t writes = 0;         // (write item, tile) visits
   std::uint64_t writesRasterised = 0;
   CpuTileWork& operator+=(const CpuTileWork& o);
 };
