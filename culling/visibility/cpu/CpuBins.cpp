@@ -12,20 +12,11 @@ namespace cdb {
 
 namespace {
 
-// Items of command `c`: its triangles in chunks on the mesh's chunk grid (a Range), in chunks of
-// its list (Listed), or its boxes one by one.
+// Items of command `c`: its triangles in chunks of kChunkTriangles (a Range's on the mesh's chunk
+// grid, as it starts at 0), or its boxes one by one.
 std::uint32_t itemCount(const CpuCommand& c) {
-  switch (c.source) {
-    case CpuCommand::Source::Range:
-      return c.count == 0
-                 ? 0
-                 : (c.first + c.count - 1) / kChunkTriangles - c.first / kChunkTriangles + 1;
-    case CpuCommand::Source::Listed:
-      return (c.count + kChunkTriangles - 1) / kChunkTriangles;
-    case CpuCommand::Source::Boxes:
-      return c.count;
-  }
-  return 0;
+  return c.source == CpuCommand::Source::Boxes ? c.count
+                                               : (c.count + kChunkTriangles - 1) / kChunkTriangles;
 }
 
 // Screen extent of a box (centre and half extents) in the frame of `toScreen`: exact up to
@@ -94,10 +85,9 @@ void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3
 
 // Items [n0, n1) of command `ci`, at items[n0 ..]; a chunk item's parts at
 // bins.parts[firstParts + n0 ..].
-void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
-               std::span<const CpuMeshBounds> bounds, std::uint32_t ci, std::uint32_t pass,
-               CpuItem* items, CpuBins& bins, std::uint32_t firstParts, std::uint32_t n0,
-               std::uint32_t n1) {
+void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
+               std::uint32_t ci, std::uint32_t pass, CpuItem* items, CpuBins& bins,
+               std::uint32_t firstParts, std::uint32_t n0, std::uint32_t n1) {
   const CpuCommand& c = recording.commands[ci];
   const RasterPass& raster = recording.passes[pass].raster;
   CpuItem base;
@@ -105,65 +95,38 @@ void makeItems(const CpuRecording& recording, const SceneGeometry& scene,
   base.test = c.role == CpuCommand::Role::Test;
   base.answerEach = base.test && c.answerEach;
   const auto answerOf = [&](std::uint32_t offset) { return c.query + (c.answerEach ? offset : 0); };
+  if (c.source == CpuCommand::Source::Boxes) {
+    for (std::uint32_t b = n0; b < n1; ++b) {
+      CpuItem& item = items[b] = base;
+      item.first = c.first + b, item.count = 1, item.answer = answerOf(b);
+      const ScreenMatrix cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
+      boundItem(extentOf(cube, Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()), raster, item);
+    }
+    return;
+  }
   const CpuMeshBounds& mesh = bounds[c.mesh];
   constexpr std::size_t kParts = kChunkTriangles / kPartTriangles;
   std::array<Eigen::AlignedBox3f, kParts> parts;
-  switch (c.source) {
-    case CpuCommand::Source::Range: {
-      const std::uint32_t end = c.first + c.count;
-      std::uint32_t n = n0;
-      for (std::uint32_t at = n0 == 0 ? c.first
-                                      : (c.first / kChunkTriangles + n0) * kChunkTriangles;
-           n < n1; ++n) {
-        const std::uint32_t chunk = at / kChunkTriangles;
-        const std::uint32_t stop = std::min(end, (chunk + 1) * kChunkTriangles);
-        CpuItem& item = items[n] = base;
-        item.first = at, item.count = stop - at, item.answer = answerOf(at - c.first);
-        item.parts = firstParts + n;
-        // Part p: the item's triangles [p, p + 1) * kPartTriangles (as chunkPieces reads them).
-        for (std::size_t p = 0; p < kParts; ++p) {
-          const std::uint32_t p0 = std::min<std::uint32_t>(stop, at + p * kPartTriangles);
-          const std::uint32_t p1 = std::min<std::uint32_t>(stop, p0 + kPartTriangles);
-          parts[p] = {};
-          if (p0 == p1) continue;  // the item has no such part
-          if (p0 % kPartTriangles == 0 &&
-              (p1 - p0 == kPartTriangles || p1 == mesh.triangles.size()))
-            parts[p] = mesh.parts[p0 / kPartTriangles];
-          else
-            for (std::uint32_t t = p0; t < p1; ++t) parts[p].extend(mesh.triangles[t]);
-        }
-        boundChunk(c.toScreen, parts, raster, item, bins.parts[item.parts]);
-        at = stop;
-      }
-      return;
+  for (std::uint32_t n = n0, at = n0 * kChunkTriangles; n < n1; ++n, at += kChunkTriangles) {
+    CpuItem& item = items[n] = base;
+    item.first = c.first + at;
+    item.count = std::min(kChunkTriangles, c.count - at);
+    item.answer = answerOf(at);
+    item.parts = firstParts + n;
+    // Part p: the item's triangles [p, p + 1) * kPartTriangles (as chunkPieces reads them); a
+    // Range's are the mesh's own parts.
+    for (std::uint32_t p = 0; p < kParts; ++p) {
+      const std::uint32_t p0 = p * kPartTriangles;
+      const std::uint32_t p1 = std::min(item.count, p0 + kPartTriangles);
+      parts[p] = {};
+      if (c.source == CpuCommand::Source::Range && p0 < p1)
+        parts[p] = mesh.parts[(item.first + p0) / kPartTriangles];
+      else if (c.source == CpuCommand::Source::Listed)
+        for (std::uint32_t i = p0; i < p1; ++i)
+          parts[p].extend(mesh.triangles[recording.listed[item.first + i]]);
     }
-    case CpuCommand::Source::Listed: {
-      for (std::uint32_t n = n0, at = n0 * kChunkTriangles; n < n1; ++n, at += kChunkTriangles) {
-        CpuItem& item = items[n] = base;
-        item.first = c.first + at;
-        item.count = std::min(kChunkTriangles, c.count - at);
-        item.answer = answerOf(at);
-        item.parts = firstParts + n;
-        for (std::size_t p = 0; p < kParts; ++p) {
-          parts[p] = {};
-          const std::uint32_t p1 = std::min<std::uint32_t>(item.count, (p + 1) * kPartTriangles);
-          for (std::uint32_t i = p * kPartTriangles; i < p1; ++i)
-            parts[p].extend(mesh.triangles[recording.listed[item.first + i]]);
-        }
-        boundChunk(c.toScreen, parts, raster, item, bins.parts[item.parts]);
-      }
-      return;
-    }
-    case CpuCommand::Source::Boxes:
-      for (std::uint32_t b = n0; b < n1; ++b) {
-        CpuItem& item = items[b] = base;
-        item.first = c.first + b, item.count = 1, item.answer = answerOf(b);
-        const ScreenMatrix cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
-        boundItem(extentOf(cube, Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()), raster, item);
-      }
-      return;
+    boundChunk(c.toScreen, parts, raster, item, bins.parts[item.parts]);
   }
-  (void)scene;
 }
 
 constexpr std::uint32_t kItemsPerTask = 512;
@@ -239,9 +202,8 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_aren
 
 }  // namespace
 
-void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
-                  std::span<const CpuMeshBounds> bounds, int tileSize, int continuedTileSize,
-                  tbb::task_arena* arena, CpuBins& bins) {
+void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
+                  int tileSize, int continuedTileSize, tbb::task_arena* arena, CpuBins& bins) {
   const std::size_t commands = recording.commands.size();
   bins.firstItem.resize(commands + 1);
   bins.firstParts.resize(commands);
@@ -275,7 +237,6 @@ void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
                        : tileSize > 0 ? tileSize
                                       : (chain.resolution + kBlock - 1) / kBlock * kBlock;
       chain.tilesX = tilesAcross(chain.resolution, chain.tileSize);
-      chain.continues = pass.continues;
       chain.orderIndependent = pass.raster.orderIndependent;
       chain.clearValue = pass.clearValue;
     }
@@ -293,7 +254,7 @@ void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
   }
   forEach(arena, bins.itemTasks.size(), [&](std::size_t t) {
     const auto [i, n0, n1] = bins.itemTasks[t];
-    makeItems(recording, scene, bounds, i, passOf[i], bins.items.data() + bins.firstItem[i], bins,
+    makeItems(recording, bounds, i, passOf[i], bins.items.data() + bins.firstItem[i], bins,
               bins.firstParts[i], n0, n1);
   });
   forEach(arena, chains, [&](std::size_t c) { binChain(recording, bins, arena, bins.chains[c]); });

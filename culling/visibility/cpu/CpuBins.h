@@ -55,13 +55,12 @@ using CpuItemParts = std::array<PixelRect, kChunkTriangles / kPartTriangles>;
 
 // Passes that share one depth buffer, in order: a pass that clears starts one; a SharedSecond
 // pass, or draws going on after a fetch, join the one before (or the buffer a previous recording
-// left: `continues`).
+// left: its first pass CpuPass::continues).
 struct CpuChain {
   std::uint32_t firstPass = 0, endPass = 0;
   int resolution = 0;
-  int tileSize = 0;  // pixels, a multiple of CpuDepthBuffer::kBlock
-  int tilesX = 0;    // tiles per row and per column
-  bool continues = false;
+  int tileSize = 0;               // pixels, a multiple of CpuDepthBuffer::kBlock
+  int tilesX = 0;                 // tiles per row and per column
   bool orderIndependent = false;  // its buffer keeps the others' planes (CpuDepthBuffer)
   float clearValue = 1.f;         // the value its first pass clears to (unless it continues)
   // Items of tile t: binned[offsets[t] .. offsets[t + 1]), ascending (issue order).
@@ -107,8 +106,7 @@ struct CpuRun {
 // CpuMeshBounds. Tiles are `tileSize` pixels (0: one tile the whole frame, rounded up to a block);
 // a chain that continues a buffer keeps that buffer's `continuedTileSize`. Runs on `arena` when
 // given.
-void binRecording(const CpuRecording& recording, const SceneGeometry& scene,
-                  std::span<const CpuMeshBounds> bounds, int tileSize, int continuedTileSize,
-                  tbb::task_arena* arena, CpuBins& bins);
+void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
+                  int tileSize, int continuedTileSize, tbb::task_arena* arena, CpuBins& bins);
 
 }  // namespace cdb

@@ -98,12 +98,10 @@ std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
     b.cornersInChunk.resize(n);
     std::unordered_map<std::uint32_t, std::uint8_t> local;
     for (std::size_t first = 0; first < n; first += kChunkTriangles) {
-      Eigen::AlignedBox3f chunk;
       const std::size_t end = std::min<std::size_t>(first + kChunkTriangles, n);
       b.chunkVertexStart.push_back(static_cast<std::uint32_t>(b.chunkVertices.size()));
       local.clear();
       for (std::size_t p = first; p < end; ++p) {
-        chunk.extend(b.triangles[p]);
         for (int v = 0; v < 3; ++v) {
           const std::uint32_t vertex = m.triangles[b.order[p]][v];
           const auto [at, added] =
@@ -112,7 +110,6 @@ std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
           b.cornersInChunk[p][v] = at->second;
         }
       }
-      b.chunks.push_back(chunk);
     }
     b.chunkVertexStart.push_back(static_cast<std::uint32_t>(b.chunkVertices.size()));
     for (std::size_t first = 0; first < n; first += kPartTriangles) {

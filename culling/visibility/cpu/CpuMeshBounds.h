@@ -1,17 +1,10 @@
 #pragma once
 // What binning needs to know of each mesh of the attached scene without touching its triangles:
-// the order the backend draws its triangles in, a box per chunk of consecutive triangles of that
-// order and one per triangle (in the mesh's own frame), and whether it is closed with a consistent
-// winding (see CpuCommand::winding).
-//
-// Within one command the order of its triangles changes nothing (a write keeps the nearest depth,
-// a test looks for any occluded sample, a batch answers per triangle), so the backend may draw a
-// mesh's triangles in an order of its own: along a Morton curve through their centroids, where
-// that makes its chunks more compact than the mesh's own order (summed chunk box extents). A chunk
-// is then a patch of the surface, not a strip across it (the Stanford dragon's file order makes
-// chunks of 64 triangles that span 70% of its length), so a chunk's rectangle is small, touches
-// one tile mostly, and its depth range is narrow. A generated torus, whose own order goes around
-// its tube ring by ring, keeps its order.
+// the order the backend draws its triangles in, a box per part of that order and per triangle (in
+// the mesh's own frame), and whether it is closed with a consistent winding (CpuCommand::winding).
+// The order of a command's triangles changes no answer, so a mesh is drawn along a Morton curve
+// through their centroids where that makes its chunks more compact than its own order: a chunk is
+// then a patch of the surface, not a strip across it, and its rectangle and depth range are small.
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
@@ -34,15 +27,15 @@ static_assert(kChunkTriangles % kPartTriangles == 0);
 // Everything but `order` and `position` is indexed by position in the draw order.
 struct CpuMeshBounds {
   std::int8_t winding = 0;
-  std::vector<std::uint32_t> order;     // position -> mesh triangle
-  std::vector<std::uint32_t> position;  // mesh triangle -> position
-  std::vector<Eigen::AlignedBox3f> chunks;     // chunk c: positions [c, c + 1) * kChunkTriangles
+  std::vector<std::uint32_t> order;            // position -> mesh triangle
+  std::vector<std::uint32_t> position;         // mesh triangle -> position
   std::vector<Eigen::AlignedBox3f> parts;      // part p: positions [p, p + 1) * kPartTriangles
   std::vector<Eigen::AlignedBox3f> triangles;  // per position
-  // The vertices of chunk c, each once (a vertex is shared by about six triangles, so a chunk is
-  // drawn with a fraction as many transforms): chunkVertices[chunkVertexStart[c] ...
-  // chunkVertexStart[c + 1]), and per position its triangle's corners among its chunk's vertices.
-  std::vector<std::uint32_t> chunkVertexStart;
+  // The vertices of chunk c (positions [c, c + 1) * kChunkTriangles), each once (a vertex is shared
+  // by about six triangles, so a chunk is drawn with a fraction as many transforms):
+  // chunkVertices[chunkVertexStart[c] ... chunkVertexStart[c + 1]), and per position its triangle's
+  // corners among its chunk's vertices.
+  std::vector<std::uint32_t> chunkVertexStart;  // one more than there are chunks
   std::vector<std::uint32_t> chunkVertices;
   std::vector<std::array<std::uint8_t, 3>> cornersInChunk;
 };

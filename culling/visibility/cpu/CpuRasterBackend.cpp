@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "core/Errors.h"
 #include "culling/visibility/cpu/CpuRasteriser.h"
@@ -165,20 +166,42 @@ CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source s
 
 CpuCommand& CpuRasterBackend::recordRange(CpuCommand::Role role, const MeshRange& range) {
   const std::uint32_t mesh = scene_->objects[range.object].mesh;
-  const bool whole =
-      range.firstTriangle == 0 && range.triangleCount == scene_->meshes[mesh].triangleCount();
-  if (whole) {
-    CpuCommand& c = record(role, CpuCommand::Source::Range, range.object);
-    c.first = 0, c.count = range.triangleCount;
-    c.winding = meshBounds_[mesh].winding;
-    return c;
+  if (range.firstTriangle != 0 || range.triangleCount != scene_->meshes[mesh].triangleCount()) {
+    // Part of a mesh: its triangles listed (draw order is over whole meshes).
+    std::vector<std::uint32_t>& part = partScratch_;
+    part.resize(range.triangleCount);
+    std::iota(part.begin(), part.end(), range.firstTriangle);
+    return recordListed(role, range.object, part);
   }
-  // Part of a mesh: its triangles listed (draw order is over whole meshes).
-  CpuRecording& recording = open_->recording;
-  CpuCommand& c = record(role, CpuCommand::Source::Listed, range.object);
-  c.first = static_cast<std::uint32_t>(recording.listed.size()), c.count = range.triangleCount;
-  for (std::uint32_t t = 0; t < range.triangleCount; ++t)
-    recording.listed.push_back(range.firstTriangle + t);
+  CpuCommand& c = record(role, CpuCommand::Source::Range, range.object);
+  c.first = 0, c.count = range.triangleCount;
+  c.winding = meshBounds_[mesh].winding;
+  ++counters_.draws;
+  counters_.trianglesDrawn += range.triangleCount;
+  return c;
+}
+
+CpuCommand& CpuRasterBackend::recordListed(CpuCommand::Role role, ObjectId object,
+                                           std::span<const std::uint32_t> triangles) {
+  std::vector<std::uint32_t>& listed = open_->recording.listed;
+  CpuCommand& c = record(role, CpuCommand::Source::Listed, object);
+  c.first = static_cast<std::uint32_t>(listed.size());
+  c.count = static_cast<std::uint32_t>(triangles.size());
+  listed.insert(listed.end(), triangles.begin(), triangles.end());
+  ++counters_.draws;
+  counters_.trianglesDrawn += triangles.size();
+  return c;
+}
+
+CpuCommand& CpuRasterBackend::recordBoxes(CpuCommand::Role role, ObjectId object,
+                                          std::span<const OrientedBox> boxes) {
+  std::vector<OrientedBox>& all = open_->recording.boxes;
+  CpuCommand& c = record(role, CpuCommand::Source::Boxes, object);
+  c.first = static_cast<std::uint32_t>(all.size());
+  c.count = static_cast<std::uint32_t>(boxes.size());
+  all.insert(all.end(), boxes.begin(), boxes.end());
+  ++counters_.draws;
+  counters_.trianglesDrawn += 12u * boxes.size();  // a box is the cube's 12 triangles, as on GL
   return c;
 }
 
@@ -193,10 +216,7 @@ QueryIndex CpuRasterBackend::queryRange(const MeshRange& range) {
   checkRange(range);
   const QueryIndex q = issue(1);
   if (range.triangleCount == 0) return q;  // no sample: fully visible
-  CpuCommand& c = recordRange(CpuCommand::Role::Test, range);
-  c.query = q;
-  ++counters_.draws;
-  counters_.trianglesDrawn += range.triangleCount;
+  recordRange(CpuCommand::Role::Test, range).query = q;
   return q;
 }
 
@@ -204,15 +224,13 @@ QueryIndex CpuRasterBackend::queryBox(ObjectId object, const OrientedBox& localB
   return queryBoxes(object, std::span<const OrientedBox>(&localBox, 1));
 }
 
+// A batch: one draw, an answer per triangle or box.
 QueryIndex CpuRasterBackend::queryTriangles(const MeshRange& range) {
   checkRange(range);
   if (range.triangleCount == 0) return kNoQuery;
   const QueryIndex q = issue(range.triangleCount);
   CpuCommand& c = recordRange(CpuCommand::Role::Test, range);
-  c.query = q;
-  c.answerEach = true;
-  ++counters_.draws;  // a batch is one draw
-  counters_.trianglesDrawn += range.triangleCount;
+  c.query = q, c.answerEach = true;
   return q;
 }
 
@@ -220,51 +238,29 @@ QueryIndex CpuRasterBackend::queryTriangles(ObjectId object,
                                             std::span<const std::uint32_t> triangles) {
   checkListed(object, triangles);
   if (triangles.empty()) return kNoQuery;
-  CpuRecording& recording = open_->recording;
-  const auto count = static_cast<std::uint32_t>(triangles.size());
-  const QueryIndex q = issue(count);
-  CpuCommand& c = record(CpuCommand::Role::Test, CpuCommand::Source::Listed, object);
-  c.first = static_cast<std::uint32_t>(recording.listed.size()), c.count = count, c.query = q;
-  c.answerEach = true;
-  recording.listed.insert(recording.listed.end(), triangles.begin(), triangles.end());
-  ++counters_.draws;
-  counters_.trianglesDrawn += count;
+  const QueryIndex q = issue(static_cast<std::uint32_t>(triangles.size()));
+  CpuCommand& c = recordListed(CpuCommand::Role::Test, object, triangles);
+  c.query = q, c.answerEach = true;
   return q;
 }
 
 QueryIndex CpuRasterBackend::queryBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
   checkObject(object);
   if (localBoxes.empty()) return kNoQuery;
-  CpuRecording& recording = open_->recording;
-  const auto count = static_cast<std::uint32_t>(localBoxes.size());
-  const QueryIndex q = issue(count);
-  CpuCommand& c = record(CpuCommand::Role::Test, CpuCommand::Source::Boxes, object);
-  c.first = static_cast<std::uint32_t>(recording.boxes.size()), c.count = count, c.query = q;
-  c.answerEach = true;
-  recording.boxes.insert(recording.boxes.end(), localBoxes.begin(), localBoxes.end());
-  ++counters_.draws;
-  counters_.trianglesDrawn += 12u * count;  // a box is the cube's 12 triangles, as on GL
+  const QueryIndex q = issue(static_cast<std::uint32_t>(localBoxes.size()));
+  CpuCommand& c = recordBoxes(CpuCommand::Role::Test, object, localBoxes);
+  c.query = q, c.answerEach = true;
   return q;
 }
 
 void CpuRasterBackend::writeRange(const MeshRange& range) {
   checkRange(range);
-  if (range.triangleCount == 0) return;
-  recordRange(CpuCommand::Role::Write, range);
-  ++counters_.draws;
-  counters_.trianglesDrawn += range.triangleCount;
+  if (range.triangleCount != 0) recordRange(CpuCommand::Role::Write, range);
 }
 
 void CpuRasterBackend::writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) {
   checkListed(object, triangles);
-  if (triangles.empty()) return;
-  CpuRecording& recording = open_->recording;
-  CpuCommand& c = record(CpuCommand::Role::Write, CpuCommand::Source::Listed, object);
-  c.first = static_cast<std::uint32_t>(recording.listed.size());
-  c.count = static_cast<std::uint32_t>(triangles.size());
-  recording.listed.insert(recording.listed.end(), triangles.begin(), triangles.end());
-  ++counters_.draws;
-  counters_.trianglesDrawn += triangles.size();
+  if (!triangles.empty()) recordListed(CpuCommand::Role::Write, object, triangles);
 }
 
 void CpuRasterBackend::writeBox(ObjectId object, const OrientedBox& localBox) {
@@ -273,14 +269,7 @@ void CpuRasterBackend::writeBox(ObjectId object, const OrientedBox& localBox) {
 
 void CpuRasterBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
   checkObject(object);
-  if (localBoxes.empty()) return;
-  CpuRecording& recording = open_->recording;
-  CpuCommand& c = record(CpuCommand::Role::Write, CpuCommand::Source::Boxes, object);
-  c.first = static_cast<std::uint32_t>(recording.boxes.size());
-  c.count = static_cast<std::uint32_t>(localBoxes.size());
-  recording.boxes.insert(recording.boxes.end(), localBoxes.begin(), localBoxes.end());
-  ++counters_.draws;
-  counters_.trianglesDrawn += 12u * localBoxes.size();
+  if (!localBoxes.empty()) recordBoxes(CpuCommand::Role::Write, object, localBoxes);
 }
 
 std::shared_ptr<CpuRun> CpuRasterBackend::freshRun() {
@@ -317,8 +306,7 @@ void CpuRasterBackend::flush() {
   tbb::task_arena* arena = threads_ > 1 ? arena_.get() : nullptr;
   putInDrawOrder(recording, meshBounds_, orderScratch_);
   run.vertices.assign(recording, meshBounds_);
-  binRecording(recording, *scene_, meshBounds_, evaluation_.tileSize, continuedTileSize, arena,
-               run.bins);
+  binRecording(recording, meshBounds_, evaluation_.tileSize, continuedTileSize, arena, run.bins);
   answers_.resize(issued_, 1);
 
   // Where each chain's tiles live: a continued chain in the store that holds it, the last chain
@@ -391,19 +379,18 @@ void CpuRasterBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
 
 float CpuRasterBackend::storedDepth(int x, int y) {
   flush();
-  if (retained_.runs.empty())
-    throw RunError("no depth buffer holds pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                   ")");
-  const auto& [firstRun, firstChain] = retained_.runs.front();
-  const CpuChain& chain = firstRun->bins.chains[firstChain];
-  if (x < 0 || y < 0 || x >= chain.resolution || y >= chain.resolution)
+  const CpuChain* chain =
+      retained_.runs.empty()
+          ? nullptr
+          : &retained_.runs.front().first->bins.chains[retained_.runs.front().second];
+  if (!chain || x < 0 || y < 0 || x >= chain->resolution || y >= chain->resolution)
     throw RunError("no depth buffer holds pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                    ")");
   const std::int64_t tile =
-      static_cast<std::int64_t>(y / chain.tileSize) * chain.tilesX + x / chain.tileSize;
+      static_cast<std::int64_t>(y / chain->tileSize) * chain->tilesX + x / chain->tileSize;
   if (tile != storedTileIndex_) {
     // Every write of the buffer drawn again, in order, into a fresh tile.
-    startTile(storedTile_, chain, static_cast<std::uint32_t>(tile), retained_.clearValue, 0);
+    startTile(storedTile_, *chain, static_cast<std::uint32_t>(tile), retained_.clearValue, 0);
     CpuTileWork ignored;
     for (const auto& [run, c] : retained_.runs)
       rasteriseWrites(storedTile_, CpuScene{*scene_, meshBounds_}, *run,

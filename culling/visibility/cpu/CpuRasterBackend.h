@@ -79,8 +79,13 @@ class CpuRasterBackend final : public VisibilityBackend {
   void checkListed(ObjectId object, std::span<const std::uint32_t> triangles) const;
   // A command of the open pass, with the object's matrix into its screen space.
   CpuCommand& record(CpuCommand::Role role, CpuCommand::Source source, ObjectId object);
-  // A command drawing `range`: a Range of a whole mesh (with its winding), a part listed.
+  // A command drawing `range` (a Range of a whole mesh, with its winding; a part listed), listed
+  // triangles or boxes; each counted as one draw.
   CpuCommand& recordRange(CpuCommand::Role role, const MeshRange& range);
+  CpuCommand& recordListed(CpuCommand::Role role, ObjectId object,
+                           std::span<const std::uint32_t> triangles);
+  CpuCommand& recordBoxes(CpuCommand::Role role, ObjectId object,
+                          std::span<const OrientedBox> boxes);
   // Numbers `count` answers (1 until a test says otherwise).
   QueryIndex issue(std::uint32_t count);
   // Runs the open recording; its answers join those awaiting the next fetch.
@@ -107,9 +112,10 @@ class CpuRasterBackend final : public VisibilityBackend {
   int lastResolution_ = 0;
   bool testedInPass_ = false;  // a test was issued in the open pass
 
-  std::shared_ptr<CpuRun> open_;       // what is being recorded
-  std::uint32_t issued_ = 0;           // answers numbered since the last fetch
-  std::vector<std::uint8_t> answers_;  // those already run
+  std::shared_ptr<CpuRun> open_;            // what is being recorded
+  std::vector<std::uint32_t> partScratch_;  // recordRange's part of a mesh, listed
+  std::uint32_t issued_ = 0;                // answers numbered since the last fetch
+  std::vector<std::uint8_t> answers_;       // those already run
 
   // The buffer the last run recording left (its last chain), where a pass may go on: the runs
   // whose items it holds (with the chain's index in each) and its tiles' states.

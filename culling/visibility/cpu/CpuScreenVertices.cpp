@@ -43,7 +43,7 @@ void CpuScreenVertices::assign(CpuRecording& recording, std::span<const CpuMeshB
     if (!added) continue;
     sets_.push_back({vertices, chunks});
     vertices += bounds[c.mesh].chunkVertices.size();
-    chunks += bounds[c.mesh].chunks.size();
+    chunks += bounds[c.mesh].chunkVertexStart.size() - 1;
   }
   if (positions_.size() < vertices) positions_.resize(vertices);
   if (stateCapacity_ < chunks) {
