@@ -2,7 +2,6 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -11,6 +10,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "core/ArenaForEach.h"
 #include "culling/exact/SweepAndPrune.h"
 #include "culling/exact/TriangleTriangle.h"
 
@@ -271,16 +271,6 @@ PairOutcome testPair(const MemberGeometry& ga, std::span<const std::uint32_t> su
   return out;
 }
 
-// body(i) for i in [0, count), on the arena's threads when there is one.
-template <class Body>
-void forEach(tbb::task_arena* arena, std::size_t count, const Body& body) {
-  if (!arena || count < 2) {
-    for (std::size_t i = 0; i < count; ++i) body(i);
-    return;
-  }
-  arena->execute([&] { tbb::parallel_for(std::size_t{0}, count, body); });
-}
-
 }  // namespace
 
 CollisionReport ExactPhase::run(std::span<const Pose> poses, const PotentiallyCollidingSets& sets) {
@@ -328,7 +318,7 @@ CollisionReport ExactPhase::run(std::span<const Pose> poses, const PotentiallyCo
       for (const std::uint32_t m : {mp.i, mp.j})
         if (!w.isNeeded[m]) w.isNeeded[m] = 1, w.needed.push_back(m);
     }
-    forEach(w.arena.get(), w.needed.size(), [&](std::size_t k) {
+    forEachIndex(w.arena.get(), w.needed.size(), [&](std::size_t k) {
       const SetMember& m = members[w.needed[k]];
       prepare(w.members[w.needed[k]], scene_.meshOf(m.object), m, poses[m.object]);
     });
@@ -344,7 +334,7 @@ CollisionReport ExactPhase::run(std::span<const Pose> poses, const PotentiallyCo
       return testPair(w.members[mp.i], subsetA, w.members[mp.j], subsetB, w.scratch.local());
     };
     w.outcomes.resize(w.toTest.size());
-    forEach(w.arena.get(), w.toTest.size(), [&](std::size_t k) {
+    forEachIndex(w.arena.get(), w.toTest.size(), [&](std::size_t k) {
       if (!w.repeats[k]) w.outcomes[k] = test(k);
     });
 

@@ -1,10 +1,9 @@
 #include "culling/visibility/cpu/CpuBins.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 
+#include "core/ArenaForEach.h"
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
 #include "culling/visibility/cpu/CpuPieces.h"
 
@@ -131,15 +130,6 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
 
 constexpr std::uint32_t kItemsPerTask = 512;
 
-template <class Body>
-void forEach(tbb::task_arena* arena, std::size_t count, const Body& body) {
-  if (!arena || count < 2) {
-    for (std::size_t i = 0; i < count; ++i) body(i);
-    return;
-  }
-  arena->execute([&] { tbb::parallel_for(std::size_t{0}, count, body); });
-}
-
 // A chain's items listed per tile, in issue order: each run of items counts its
 // (item, tile) entries per tile, the runs' counts in order give where each run writes in a tile's
 // list, and each run writes its own.
@@ -179,8 +169,8 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_aren
         forTiles(bins.items[i], [&](std::size_t t) { visit(i, at[t]); });
   };
   chain.fill.assign(runs * tiles, 0);
-  forEach(arena, runs,
-          [&](std::size_t r) { eachItem(r, [](std::uint32_t, std::uint32_t& n) { ++n; }); });
+  forEachIndex(arena, runs,
+               [&](std::size_t r) { eachItem(r, [](std::uint32_t, std::uint32_t& n) { ++n; }); });
   chain.tilesUsed.clear();
   std::uint32_t entries = 0;
   for (std::size_t t = 0; t < tiles; ++t) {
@@ -195,7 +185,7 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_aren
   }
   chain.offsets[tiles] = entries;
   chain.binned.resize(entries);
-  forEach(arena, runs, [&](std::size_t r) {
+  forEachIndex(arena, runs, [&](std::size_t r) {
     eachItem(r, [&](std::uint32_t i, std::uint32_t& n) { chain.binned[n++] = i; });
   });
 }
@@ -252,12 +242,13 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
     for (std::uint32_t n0 = 0; n0 < n; n0 += kItemsPerTask)
       bins.itemTasks.push_back({i, n0, std::min(n, n0 + kItemsPerTask)});
   }
-  forEach(arena, bins.itemTasks.size(), [&](std::size_t t) {
+  forEachIndex(arena, bins.itemTasks.size(), [&](std::size_t t) {
     const auto [i, n0, n1] = bins.itemTasks[t];
     makeItems(recording, bounds, i, passOf[i], bins.items.data() + bins.firstItem[i], bins,
               bins.firstParts[i], n0, n1);
   });
-  forEach(arena, chains, [&](std::size_t c) { binChain(recording, bins, arena, bins.chains[c]); });
+  forEachIndex(arena, chains,
+               [&](std::size_t c) { binChain(recording, bins, arena, bins.chains[c]); });
 }
 
 }  // namespace cdb
