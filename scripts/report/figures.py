@@ -24,11 +24,11 @@ FIGURE_NAMES = {
 GENERIC_NAMES = {"sweep": "cd_time_sweep", "per_frame": "cd_time_per_frame", "sets": "sets_per_frame"}
 
 # One colour per strategy in every figure, so a reader matches lines across figures at a glance.
-COLOURS = {"cullide": "tab:red", "cullide_bvh": "tab:orange", "quick_cullide": "darkred", "cullide_oi": "salmon",
+COLOURS = {"cullide": "tab:red", "cullide_bvh": "tab:orange", "quick_cullide": "darkred", "cullide_oi": "tab:olive",
            "sorted": "tab:purple",
            "cis": "tab:green", "ours": "tab:blue", "fcl": "tab:brown", "bullet": "tab:pink", "ode": "tab:gray",
            "all_pairs": "black"}
-EXTRA_COLOURS = ["tab:olive", "tab:cyan", "black", "gold"]
+EXTRA_COLOURS = ["tab:cyan", "teal", "black", "gold"]
 PER_FRAME_RESOLUTION = 800      # the thesis' per-frame figures are all at 800x800
 PAIR_STRATEGIES = ("cullide_bvh", "ours")    # Figure 4.8
 SET_STRATEGIES = ("ours", "cis")              # Figures 4.4, 4.9, 4.13
