@@ -399,63 +399,73 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
 }
 
 // A small triangle (smallBox): every pixel of its box inside the window, at the key bound of
-// step 1 (zHi for a test, zLo for a write).
+// step 1 (zHi for a test, zLo for a write), block by block (a box of a few pixels mostly lies in
+// one block: its pending writes, bounds and storage are looked at once).
 template <bool kIsTest, bool kOthers>
 bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
                BlockMask mask, const Writer& writer, RasterWork& work,
                PendingBlocks* pending = nullptr) {
-  const int x0 = std::max(r.x0, buffer.pixelX0()), x1 = std::min(r.x1, buffer.pixelX1());
-  const int y0 = std::max(r.y0, buffer.pixelY0()), y1 = std::min(r.y1, buffer.pixelY1());
   const float value = pass.sign * r.zLo;
-  for (int y = y0; y <= y1; ++y)
-    for (int x = x0; x <= x1; ++x) {
-      const std::size_t index = buffer.blockIndex(x / kBlock, y / kBlock);
+  const BlockRange blocks = blocksInWindow(buffer, r);
+  for (int by = blocks.y0; by <= blocks.y1; ++by)
+    for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
+      const std::size_t index = buffer.blockIndex(bx, by);
       if (!inMask(mask, index)) continue;
       if constexpr (kIsTest) resolveBlock(pending, index, r.zHi);
       const BlockKeys stored = blockKeys(buffer, index, pass.sign);
       if (blockDecides<kIsTest>(r, stored)) continue;
-      const int at = (y % kBlock) * kBlock + x % kBlock;
+      const BoxInBlock o = boxInBlock(r, bx, by);
+      const int x0 = r.x0 + o.dxA, x1 = r.x0 + o.dxB, y0 = r.y0 + o.dyA, y1 = r.y0 + o.dyB;
       if constexpr (kIsTest) {
-        ++work.pixelsTested;
-        if (buffer.uniform(index) || r.zLo >= stored.farthest) return true;
-        const float key = kOthers && buffer.objects(index)[at] == writer.object
-                              ? buffer.others(index)[at]
-                              : pass.sign * buffer.block(index)[at];
-        if (r.zHi >= key) return true;
-      } else if constexpr (kOthers) {
-        ++work.pixelsWritten;
-        buffer.materialise(index);
-        float& nearest = buffer.block(index)[at];
-        float& others = buffer.others(index)[at];
-        std::uint32_t& object = buffer.objects(index)[at];
-        if (object == writer.object) {
-          if (!(value < nearest)) continue;
-          nearest = value;
-        } else if (value < nearest) {
-          others = nearest, nearest = value, object = writer.object;
-        } else if (value < others) {
-          others = value;
-        } else {
-          continue;
+        if (buffer.uniform(index) || r.zLo >= stored.farthest) {
+          ++work.pixelsTested;
+          return true;
         }
-        refreshBounds<true>(buffer, index);
       } else {
-        ++work.pixelsWritten;
         buffer.materialise(index);
-        float& stored1 = buffer.block(index)[at];
-        if (!(r.zLo < pass.sign * stored1)) continue;
-        const float old = stored1;
-        stored1 = value;
-        // The value only moves toward the near bound; the far bound can only move when the pixel
-        // held it.
-        if (pass.sign > 0) {
-          buffer.blockMin(index) = std::min(buffer.blockMin(index), value);
-          if (old == buffer.blockMax(index)) refreshBounds<false>(buffer, index);
-        } else {
-          buffer.blockMax(index) = std::max(buffer.blockMax(index), value);
-          if (old == buffer.blockMin(index)) refreshBounds<false>(buffer, index);
-        }
       }
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const int at = (y % kBlock) * kBlock + x % kBlock;
+          if constexpr (kIsTest) {
+            ++work.pixelsTested;
+            const float key = kOthers && buffer.objects(index)[at] == writer.object
+                                  ? buffer.others(index)[at]
+                                  : pass.sign * buffer.block(index)[at];
+            if (r.zHi >= key) return true;
+          } else if constexpr (kOthers) {
+            ++work.pixelsWritten;
+            float& nearest = buffer.block(index)[at];
+            float& others = buffer.others(index)[at];
+            std::uint32_t& object = buffer.objects(index)[at];
+            if (object == writer.object) {
+              if (!(value < nearest)) continue;
+              nearest = value;
+            } else if (value < nearest) {
+              others = nearest, nearest = value, object = writer.object;
+            } else if (value < others) {
+              others = value;
+            } else {
+              continue;
+            }
+            refreshBounds<true>(buffer, index);
+          } else {
+            ++work.pixelsWritten;
+            float& stored1 = buffer.block(index)[at];
+            if (!(r.zLo < pass.sign * stored1)) continue;
+            const float old = stored1;
+            stored1 = value;
+            // The value only moves toward the near bound; the far bound can only move when the
+            // pixel held it.
+            if (pass.sign > 0) {
+              buffer.blockMin(index) = std::min(buffer.blockMin(index), value);
+              if (old == buffer.blockMax(index)) refreshBounds<false>(buffer, index);
+            } else {
+              buffer.blockMax(index) = std::max(buffer.blockMax(index), value);
+              if (old == buffer.blockMin(index)) refreshBounds<false>(buffer, index);
+            }
+          }
+        }
     }
   return false;
 }
