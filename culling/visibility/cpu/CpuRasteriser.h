@@ -7,10 +7,10 @@
 // reaching beyond the window is drawn only inside it, with exactly the coverage and keys it has in
 // the whole frame.
 #include <algorithm>
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
 #include "culling/visibility/cpu/CpuTriangleSetup.h"
@@ -99,12 +99,13 @@ void writePrepared(CpuDepthBuffer& buffer, const RasterPass& pass,
                    std::uint32_t object = CpuDepthBuffer::kNoObject);
 
 // Writes the pieces in order, everywhere (depth test "nearer than stored"): prepared and drawn in
-// every block, a chunk at a time.
+// every block, a chunk at a time, in storage the thread keeps (a chunk's worth of set-ups
+// constructed at every call would cost more than drawing a few small triangles).
 template <class Piece>
 void writePieces(CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const Piece> pieces,
                  RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject) {
   constexpr std::size_t kChunk = 64;
-  std::array<PreparedWrite<Piece>, kChunk> prepared;
+  static thread_local std::vector<PreparedWrite<Piece>> prepared(kChunk);
   for (std::size_t at = 0; at < pieces.size(); at += kChunk) {
     const std::size_t n = prepareWrites(
         buffer, pass, pieces.subspan(at, std::min(kChunk, pieces.size() - at)), prepared.data());
