@@ -634,19 +634,18 @@ HWY_EXPORT(WritePreparedQuads);
 HWY_EXPORT(TargetName);
 
 namespace {
-template <class Piece>
-std::span<const Piece> boundedTest(std::span<const Piece> pieces) {
-  if (pieces.size() > kMostTestPieces)
-    throw std::invalid_argument("a test of " + std::to_string(pieces.size()) + " pieces: at most " +
+// A test of more pieces than testUntilOccluded keeps set-ups for is refused.
+void checkTestSize(std::size_t pieces) {
+  if (pieces > kMostTestPieces)
+    throw std::invalid_argument("a test of " + std::to_string(pieces) + " pieces: at most " +
                                 std::to_string(kMostTestPieces));
-  return pieces;
 }
 }  // namespace
 
 std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                        std::span<const ScreenTriangle> triangles, RasterWork& work,
                                        std::uint32_t object, PendingBlocks* pending) {
-  boundedTest(triangles);
+  checkTestSize(triangles.size());
   return HWY_DYNAMIC_DISPATCH(TestUntilOccluded)(buffer, pass, triangles.data(), triangles.size(),
                                                  object, work, pending, nullptr);
 }
@@ -661,7 +660,7 @@ void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
 std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                    std::span<const ScreenQuad> quads, RasterWork& work,
                                    std::uint32_t object, PendingBlocks* pending) {
-  boundedTest(quads);
+  checkTestSize(quads.size());
   return HWY_DYNAMIC_DISPATCH(TestQuadsUntilOccluded)(buffer, pass, quads.data(), quads.size(),
                                                       object, work, pending);
 }
