@@ -58,6 +58,15 @@ class CpuDepthBuffer {
   [[nodiscard]] float& blockMax(std::size_t index) { return max_[index]; }
   [[nodiscard]] float blockMin(std::size_t index) const { return min_[index]; }
   [[nodiscard]] float blockMax(std::size_t index) const { return max_[index]; }
+  // The same bounds in a pass' key order (sign +1: keys are stored values; -1: their negation).
+  struct BlockKeys {
+    float nearest;
+    float farthest;
+  };
+  [[nodiscard]] BlockKeys blockKeys(std::size_t index, float sign) const {
+    const float lo = min_[index], hi = max_[index];
+    return sign > 0 ? BlockKeys{lo, hi} : BlockKeys{-hi, -lo};
+  }
   // Uniform: every pixel of the block holds blockMin() (== blockMax()); its values are not filled.
   [[nodiscard]] bool uniform(std::size_t index) const { return uniform_[index] != 0; }
   // Fills a uniform block with its value, so that pixels can be written one by one.

@@ -25,15 +25,8 @@ using D = hn::CappedTag<float, CpuDepthBuffer::kBlock>;
 constexpr int kBlock = CpuDepthBuffer::kBlock;
 constexpr bool kTest = true;
 
-// Stored keys of a block: its physical bounds in the pass' key order.
-struct BlockKeys {
-  float nearest;
-  float farthest;
-};
-inline BlockKeys blockKeys(const CpuDepthBuffer& buffer, std::size_t index, float sign) {
-  const float lo = buffer.blockMin(index), hi = buffer.blockMax(index);
-  return sign > 0 ? BlockKeys{lo, hi} : BlockKeys{-hi, -lo};
-}
+// Stored keys of a block: its bounds in the pass' key order.
+using BlockKeys = CpuDepthBuffer::BlockKeys;
 
 // Whether a block's stored keys leave nothing to do: every key a test can have is nearer than all
 // of them (visible there), or every key a write can have is at or behind all of them (no change).
@@ -374,7 +367,7 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
           resolveBlock(pending, index, farthestKeyIn(r, bx, by));
         }
       }
-      const BlockKeys stored = blockKeys(buffer, index, pass.sign);
+      const BlockKeys stored = buffer.blockKeys(index, pass.sign);
       if (blockDecides<kIsTest>(r, stored)) continue;
       // A test of a triangle inside one block needs no cover: its pixels are all there is.
       const BlockCover cover = kIsTest && oneBlock ? BlockCover::Partial : blockCover(r, bx, by);
@@ -412,7 +405,7 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
       const std::size_t index = buffer.blockIndex(bx, by);
       if (!inMask(mask, index)) continue;
       if constexpr (kIsTest) resolveBlock(pending, index, r.zHi);
-      const BlockKeys stored = blockKeys(buffer, index, pass.sign);
+      const BlockKeys stored = buffer.blockKeys(index, pass.sign);
       if (blockDecides<kIsTest>(r, stored)) continue;
       const BoxInBlock o = boxInBlock(r, bx, by);
       const int x0 = r.x0 + o.dxA, x1 = r.x0 + o.dxB, y0 = r.y0 + o.dyA, y1 = r.y0 + o.dyB;
@@ -481,7 +474,7 @@ bool decidedByBlocks(const CpuDepthBuffer& buffer, const RasterPass& pass, const
       const std::size_t index = buffer.blockIndex(bx, by);
       if (!inMask(mask, index)) continue;
       if (unresolved(pending, index)) return false;
-      if (!blockDecides<kIsTest>(r, blockKeys(buffer, index, pass.sign))) return false;
+      if (!blockDecides<kIsTest>(r, buffer.blockKeys(index, pass.sign))) return false;
     }
   return true;
 }

@@ -34,9 +34,8 @@ template <bool kIsTest>
 bool storedDecides(const CpuDepthBuffer& depth, BlockMask mask, float sign, float key) {
   for (BlockMask m = mask; m != 0; m &= m - 1) {
     const auto i = static_cast<std::size_t>(std::countr_zero(m));
-    const float nearest = sign > 0 ? depth.blockMin(i) : -depth.blockMax(i);
-    const float farthest = sign > 0 ? depth.blockMax(i) : -depth.blockMin(i);
-    if (!(kIsTest ? key < nearest : key >= farthest)) return false;
+    const CpuDepthBuffer::BlockKeys stored = depth.blockKeys(i, sign);
+    if (!(kIsTest ? key < stored.nearest : key >= stored.farthest)) return false;
   }
   return true;
 }
