@@ -1,6 +1,7 @@
 #include "culling/bvh/NodeFrontier.h"
 
 #include <algorithm>
+#include <bit>
 
 namespace cdb {
 
@@ -92,13 +93,19 @@ std::size_t NodeFrontier::triangleCount(ObjectId object) const {
 SetMember NodeFrontier::member(ObjectId object) const {
   SetMember m{object, {}};
   // Active nodes never share a triangle (no node is an ancestor of another), so the counts add.
-  if (triangleCount(object) == scene_->meshOf(object).triangleCount()) return m;
+  const std::size_t all = scene_->meshOf(object).triangleCount();
+  const std::size_t count = triangleCount(object);
+  if (count == all) return m;
   const ObbTree& t = tree(object);
-  for (std::uint32_t n : active_[object]) {
-    const auto tris = t.triangles(t.nodes()[n]);
-    m.triangles.insert(m.triangles.end(), tris.begin(), tris.end());
-  }
-  std::ranges::sort(m.triangles);
+  m.triangles.reserve(count);
+  // In ascending order without a sort: marked in a bitmap over the mesh's triangles, read back.
+  std::vector<std::uint64_t> marked((all + 63) / 64);
+  for (std::uint32_t n : active_[object])
+    for (std::uint32_t tri : t.triangles(t.nodes()[n]))
+      marked[tri / 64] |= std::uint64_t{1} << (tri % 64);
+  for (std::size_t w = 0; w < marked.size(); ++w)
+    for (std::uint64_t bits = marked[w]; bits != 0; bits &= bits - 1)
+      m.triangles.push_back(static_cast<std::uint32_t>(w * 64 + std::countr_zero(bits)));
   return m;
 }
 
