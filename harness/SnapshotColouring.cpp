@@ -39,6 +39,11 @@ ObjectColouring colourBySets(std::size_t objectCount, const PotentiallyColliding
   return c;
 }
 
+void paleFixedObjects(const SceneGeometry& scene, ObjectColouring& colouring) {
+  for (std::size_t o = 0; o < scene.objectCount() && o < colouring.colour.size(); ++o)
+    if (scene.objects[o].fixed) colouring.colour[o] = pale(colouring.colour[o]);
+}
+
 ObjectColouring colourByGroup(const SceneGeometry& scene, std::span<const ObjectPair> colliding) {
   static constexpr Rgb kFixed{150, 158, 172};
   static constexpr Rgb kMoving[] = {

@@ -39,6 +39,14 @@ struct ObjectColouring {
                                            const PotentiallyCollidingSets& sets,
                                            std::span<const ObjectPair> colliding);
 
+// Fixed objects (the planes of a trough, which a set often holds) in their colour made pale, so
+// that the moving objects stand out from the ground they lie on.
+void paleFixedObjects(const SceneGeometry& scene, ObjectColouring& colouring);
+[[nodiscard]] constexpr Rgb pale(Rgb c) {
+  const auto up = [](std::uint8_t v) { return static_cast<std::uint8_t>(v + (255 - v) * 3 / 5); };
+  return {up(c.r), up(c.g), up(c.b)};
+}
+
 // By body group (fixed bodies in a slate grey, moving groups in warm colours), for a picture of
 // the scene alone.
 [[nodiscard]] ObjectColouring colourByGroup(const SceneGeometry& scene,

@@ -153,6 +153,8 @@ LegendContent legendFor(const SnapshotOptions& o, const Frames& f, const std::st
                                                 std::to_string(a.culled->sets[k].members.size())});
       const auto pruned = std::count(a.colouring.setOf.begin(), a.colouring.setOf.end(), -1);
       l.swatches.push_back({kPrunedColour, "pruned: " + std::to_string(pruned)});
+      if (std::ranges::any_of(f.scene.objects, &SceneObject::fixed))
+        l.swatches.push_back({pale(setColour(0)), "fixed: pale"});
     } else {
       l.lines.push_back(*o.strategy + " is a CPU peer (no culling sets): " + pairs + " (outlined)");
     }
@@ -218,6 +220,7 @@ nlohmann::json pictureJson(const SnapshotOptions& o, const Frames& f, const std:
     const auto& box = picture.pixelBoxes[i];
     objects.push_back({{"id", i},
                        {"group", f.scene.objects[i].group},
+                       {"fixed", f.scene.objects[i].fixed},
                        {"set", a.colouring.setOf[i] >= 0 ? nlohmann::json(a.colouring.setOf[i] + 1)
                                                          : nlohmann::json(nullptr)},
                        {"colour", rgbJson(a.colouring.colour[i])},
@@ -340,8 +343,12 @@ SnapshotSummary runSnapshot(const SnapshotOptions& o) {
     } else {
       a.colliding = truth->compute(poses).collidingPairs;
     }
-    a.colouring = a.culled ? colourBySets(f.scene.objectCount(), a.culled->sets, a.colliding)
-                           : colourByGroup(f.scene, a.colliding);
+    if (a.culled) {
+      a.colouring = colourBySets(f.scene.objectCount(), a.culled->sets, a.colliding);
+      paleFixedObjects(f.scene, a.colouring);
+    } else {
+      a.colouring = colourByGroup(f.scene, a.colliding);
+    }
     const Picture picture = paintPicture(renderer, f.scene, poses, a.colouring,
                                          legendFor(o, f, backendName, frame, a), setup);
     fs::path png = o.out;

@@ -49,9 +49,10 @@ void appendObjectCorners(const SceneGeometry& scene, std::span<const Pose> poses
                          std::vector<Eigen::Vector3d>& points) {
   std::vector<Eigen::AlignedBox3d> local;
   for (const Mesh& m : scene.meshes) local.push_back(m.bounds());
+  const bool anyMoving = !std::ranges::all_of(scene.objects, &SceneObject::fixed);
   for (std::size_t o = 0; o < scene.objectCount(); ++o) {
     const Eigen::AlignedBox3d& box = local[scene.objects[o].mesh];
-    if (box.isEmpty()) continue;
+    if (box.isEmpty() || (anyMoving && scene.objects[o].fixed)) continue;
     for (int k = 0; k < 8; ++k)
       points.push_back(poses[o].apply(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k))));
   }

@@ -36,8 +36,9 @@ struct PictureSetup {
 // The twelve edges of the cube [-half, half]^3.
 [[nodiscard]] std::vector<Segment> cubeEdges(double half);
 
-// What a camera is fitted to: the corners of every object's local bounding box at `poses` (for a
-// flat mesh, such as a plane, its own corners), appended to `points`.
+// What a camera is fitted to: the corners of every moving object's local bounding box at `poses`
+// (every object's when none moves; for a flat mesh, such as a plane, its own corners), appended to
+// `points`. Fixed ground reaching past them is cut off at the picture's edges.
 void appendObjectCorners(const SceneGeometry& scene, std::span<const Pose> poses,
                          std::vector<Eigen::Vector3d>& points);
 

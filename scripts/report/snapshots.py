@@ -43,9 +43,10 @@ def _snapshot(png: Path, environment: str):
     contacts = f"{pairs} colliding {'pair' if pairs == 1 else 'pairs'} (outlined)"
     if strategy and info.get("sets") is not None:
         sets = len(info["sets"])
+        fixed = ", fixed objects pale" if any(o.get("fixed") for o in info.get("objects", [])) else ""
         what = (f"objects coloured by the {sets} potentially colliding {'set' if sets == 1 else 'sets'} of `{strategy}` "
                 f"({info.get('visibility')} backend at {info.get('resolution')} px; PCS {info.get('pcs_size')} objects, "
-                f"pruned objects grey), {contacts}")
+                f"pruned objects grey{fixed}), {contacts}")
         alt = f"{environment}, frame {frame}, coloured by the sets of {strategy}"
     elif strategy:
         what = f"`{strategy}` found {contacts}"

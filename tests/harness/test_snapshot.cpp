@@ -22,7 +22,9 @@
 #include "harness/SnapshotColouring.h"
 #include "harness/SnapshotLegend.h"
 #include "harness/SnapshotOptions.h"
+#include "harness/SnapshotPicture.h"
 #include "render/ImageText.h"
+#include "scenes/ProceduralMeshes.h"
 #include "tests/common/FreshTempDir.h"
 #include "tests/common/PngImage.h"
 #include "tests/common/ShellCommand.h"
@@ -359,6 +361,35 @@ TEST(SnapshotColouring, SetsPrunedAndColliding) {
   EXPECT_EQ(setColour(kSetPaletteSize), setColour(0));
   sets[1].members.push_back({6, {}});
   EXPECT_THROW((void)colourBySets(6, sets, pairs), RunError);
+}
+
+TEST(SnapshotColouring, FixedObjectsArePaleAndTheCameraIsFittedToWhatMoves) {
+  SceneGeometry scene;
+  scene.meshes = {makePlane(10.0, 2), makeTorus(0.5, 0.2, 8, 6)};
+  scene.objects = {{.mesh = 0, .fixed = true}, {.mesh = 1}, {.mesh = 1}};
+  PotentiallyCollidingSets sets(1);
+  sets[0].members = {{0, {}}, {1, {}}};
+  ObjectColouring c = colourBySets(3, sets, {});
+  paleFixedObjects(scene, c);
+  EXPECT_EQ(c.colour[0], pale(setColour(0)));
+  EXPECT_EQ(c.colour[1], setColour(0));
+  EXPECT_EQ(c.colour[2], kPrunedColour);
+  const Rgb p = pale(setColour(0));
+  EXPECT_GT(p.r + p.g + p.b, setColour(0).r + setColour(0).g + setColour(0).b + 200);
+
+  // The plane reaches 5 from the origin; the tori, 3 and 4 away along x, 0.7 from their centres.
+  std::vector<Pose> poses(3);
+  poses[1].translation = {3, 0, 0};
+  poses[2].translation = {4, 0, 0};
+  std::vector<Eigen::Vector3d> points;
+  appendObjectCorners(scene, poses, points);
+  ASSERT_EQ(points.size(), 16u);
+  for (const Eigen::Vector3d& q : points) EXPECT_NEAR(q.x(), 3.5, 1.21);
+  // Nothing moves: the fixed objects are what the camera sees.
+  scene.objects[1].fixed = scene.objects[2].fixed = true;
+  points.clear();
+  appendObjectCorners(scene, poses, points);
+  EXPECT_EQ(points.size(), 24u);
 }
 
 }  // namespace
