@@ -73,7 +73,8 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
     if (profiling.raw) options.conservative = false;
     backend->setOptions(options);
   }
-  ExactPhase exact(recorded.scene);
+  // On the cpu backend's threads, as `cdbench run --threads` runs it.
+  ExactPhase exact(recorded.scene, cpu.given ? cpu.threads : 1);
   const bool drawsNothing = !DetectorRegistry::builtin().usesBackend(strategyName);
   auto detector = DetectorRegistry::builtin().createDetector(
       strategyName, DetectorOptions{resolution, recorded.config.culling}, *backend, exact);
