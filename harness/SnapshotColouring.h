@@ -1,7 +1,8 @@
 #pragma once
 // The colours of a snapshot (thesis Figures 4.1, 4.5, 4.10 with a strategy's answer on them): one
-// colour per potentially colliding set, grey for what the culling pruned, and which objects are in
-// a colliding pair (outlined in the picture). Without a strategy: one colour per body group.
+// colour per potentially colliding set, grey for what the culling pruned, fixed objects pale, and
+// which objects are in a colliding pair (outlined in the picture). Without a strategy: one colour
+// per body group.
 #include <cstddef>
 #include <span>
 #include <vector>
