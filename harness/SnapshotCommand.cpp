@@ -153,8 +153,12 @@ LegendContent legendFor(const SnapshotOptions& o, const Frames& f, const std::st
                                                 std::to_string(a.culled->sets[k].members.size())});
       const auto pruned = std::count(a.colouring.setOf.begin(), a.colouring.setOf.end(), -1);
       l.swatches.push_back({kPrunedColour, "pruned: " + std::to_string(pruned)});
-      if (std::ranges::any_of(f.scene.objects, &SceneObject::fixed))
-        l.swatches.push_back({pale(setColour(0)), "fixed: pale"});
+      // In the colour of the first fixed object, as drawn.
+      const auto fixed = std::ranges::find_if(f.scene.objects, &SceneObject::fixed);
+      if (fixed != f.scene.objects.end())
+        l.swatches.push_back(
+            {a.colouring.colour[static_cast<std::size_t>(fixed - f.scene.objects.begin())],
+             "fixed: pale"});
     } else {
       l.lines.push_back(*o.strategy + " is a CPU peer (no culling sets): " + pairs + " (outlined)");
     }
