@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/ArenaForEach.h"
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
@@ -28,10 +29,6 @@ ScreenExtent extentOf(const ScreenMatrix& toScreen, const Eigen::Vector3d& centr
   const Eigen::Vector3d mid = toScreen.leftCols<3>() * centre + toScreen.col(3);
   const Eigen::Vector3d reach = toScreen.leftCols<3>().cwiseAbs() * half;
   return {mid - reach, mid + reach};
-}
-ScreenExtent extentOf(const ScreenMatrix& toScreen, const Eigen::AlignedBox3f& local) {
-  const Eigen::AlignedBox3d box = local.cast<double>();
-  return extentOf(toScreen, box.center(), box.sizes() * 0.5);
 }
 
 // The pixels a triangle within the extent can cover: a pixel more on each side than the set-up
@@ -67,19 +64,36 @@ void boundItem(const ScreenExtent& e, const RasterPass& pass, CpuItem& item) {
   item.kHi = clampToPass(raster_detail::roundUp(e.hi.z() + shift + slack));
 }
 
-// A chunk item's bounds from the boxes of its parts (empty boxes: parts it does not have).
+// A chunk item's bounds from the boxes of its parts (empty boxes: parts it does not have): each
+// part's screen extent, and the item's their union (every triangle lies in its part's box, so in
+// its part's extent; tighter than the extent of the parts' union box).
 void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3f> parts,
                 const RasterPass& pass, CpuItem& item, CpuItemParts& rects) {
-  Eigen::AlignedBox3f all;
+  const Eigen::Matrix3d reach = toScreen.leftCols<3>().cwiseAbs();
+  ScreenExtent all{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+                   Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+  bool any = false, finite = true;
   for (std::size_t p = 0; p < rects.size(); ++p) {
-    rects[p] = parts[p].isEmpty() ? PixelRect{} : pixelsOf(extentOf(toScreen, parts[p]), pass);
-    all.extend(parts[p]);
+    if (parts[p].isEmpty()) {
+      rects[p] = {};
+      continue;
+    }
+    const Eigen::AlignedBox3d box = parts[p].cast<double>();
+    const Eigen::Vector3d mid = toScreen.leftCols<3>() * box.center() + toScreen.col(3);
+    const Eigen::Vector3d half = reach * (box.sizes() * 0.5);
+    const ScreenExtent e{mid - half, mid + half};
+    rects[p] = pixelsOf(e, pass);
+    all.lo = all.lo.cwiseMin(e.lo).eval();
+    all.hi = all.hi.cwiseMax(e.hi).eval();
+    finite = finite && e.lo.allFinite() && e.hi.allFinite();
+    any = true;
   }
-  if (all.isEmpty()) {
+  if (!any) {
     item.rect = {};
     return;
   }
-  boundItem(extentOf(toScreen, all), pass, item);
+  if (!finite) all.lo.x() = std::numeric_limits<double>::quiet_NaN();  // boundItem: whole frame
+  boundItem(all, pass, item);
 }
 
 // Items [n0, n1) of command `ci`, at items[n0 ..]; a chunk item's parts at
