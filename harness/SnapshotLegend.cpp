@@ -46,6 +46,23 @@ std::optional<int> flow(const std::vector<LegendSwatch>& swatches, int y, int wi
   return swatches.empty() ? y : y + m.line;
 }
 
+// `line` in pieces no wider than `width` at the metrics' scale, broken after spaces (a word wider
+// than that on its own is cut between letters).
+std::vector<std::string> wrapped(const std::string& line, int width, const Metrics& m) {
+  std::vector<std::string> out;
+  std::string rest = line;
+  while (textWidth(rest, m.scale) > width) {
+    std::size_t fits = 1;  // the longest prefix that fits (at least one letter)
+    while (fits < rest.size() && textWidth(rest.substr(0, fits + 1), m.scale) <= width) ++fits;
+    const std::size_t space = rest.rfind(' ', fits);
+    const std::size_t cut = space != std::string::npos && space > 0 ? space : fits;
+    out.push_back(rest.substr(0, cut));
+    rest = rest.substr(cut < rest.size() && rest[cut] == ' ' ? cut + 1 : cut);
+  }
+  out.push_back(rest);
+  return out;
+}
+
 }  // namespace
 
 LegendLayout layoutLegend(const LegendContent& content, int width, int maxHeight) {
@@ -55,9 +72,11 @@ LegendLayout layoutLegend(const LegendContent& content, int width, int maxHeight
   out.scale = m.scale;
   int y = m.pad;
   for (const std::string& line : content.lines) {
-    if (y + m.line + m.pad > maxHeight) break;
-    out.lines.emplace_back(y, line);
-    y += m.line;
+    for (const std::string& piece : wrapped(line, width - 2 * m.pad, m)) {
+      if (y + m.line + m.pad > maxHeight) break;
+      out.lines.emplace_back(y, piece);
+      y += m.line;
+    }
   }
   // All the swatches, or as many as fit with "+N more" after them.
   std::optional<int> end = flow(content.swatches, y, width, maxHeight, m, out.swatches);

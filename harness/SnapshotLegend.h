@@ -39,8 +39,9 @@ struct LegendLayout {
 // swatches. Fixed for a width, so that every picture of a sequence frames the scene alike.
 [[nodiscard]] int legendBandHeight(int width);
 
-// The band for a picture `width` wide and `maxHeight` tall: text lines first, then swatches
-// flowing left to right and wrapping; swatches that do not fit are summed up as "+N more".
+// The band for a picture `width` wide and `maxHeight` tall: text lines first (a line wider than the
+// band wrapped after a space), then swatches flowing left to right and wrapping; swatches that do
+// not fit are summed up as "+N more".
 [[nodiscard]] LegendLayout layoutLegend(const LegendContent& content, int width, int maxHeight);
 
 // Paints the band into `image` from row `top` down (layout.height rows).

@@ -348,6 +348,31 @@ TEST(SnapshotLegend, SwatchesThatDoNotFitAreSummedUp) {
   EXPECT_EQ(layoutLegend(content, 400, height).swatches.size(), 3u);
 }
 
+TEST(SnapshotLegend, LongLinesWrapAfterASpace) {
+  LegendContent content;
+  content.lines = {"cullide_bvh on env2, frame 150: 14 objects; gl-queries backend at 1200 px"};
+  const LegendLayout wide = layoutLegend(content, 960, legendBandHeight(960));
+  ASSERT_EQ(wide.lines.size(), 1u);
+  EXPECT_EQ(wide.lines[0].second, content.lines[0]);
+  const LegendLayout narrow = layoutLegend(content, 720, legendBandHeight(720));
+  ASSERT_EQ(narrow.lines.size(), 2u);
+  std::string joined;
+  for (const auto& [y, text] : narrow.lines) {
+    EXPECT_LE(textWidth(text, narrow.scale), 720 - 2 * 12) << text;  // 12: the band's padding
+    EXPECT_NE(text.front(), ' ');
+    joined += (joined.empty() ? "" : " ") + text;
+  }
+  EXPECT_EQ(joined, content.lines[0]);
+  EXPECT_GT(narrow.lines[1].first, narrow.lines[0].first);
+  // A word wider than the band is cut between letters, and nothing is lost.
+  content.lines = {std::string(100, 'x')};
+  const LegendLayout cut = layoutLegend(content, 720, legendBandHeight(720));
+  ASSERT_GE(cut.lines.size(), 2u);
+  std::size_t letters = 0;
+  for (const auto& [y, text] : cut.lines) letters += text.size();
+  EXPECT_EQ(letters, 100u);
+}
+
 TEST(SnapshotColouring, SetsPrunedAndColliding) {
   PotentiallyCollidingSets sets(2);
   sets[0].members = {{1, {}}, {3, {}}};
