@@ -69,7 +69,6 @@ void boundItem(const ScreenExtent& e, const RasterPass& pass, CpuItem& item) {
 // its part's extent; tighter than the extent of the parts' union box).
 void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3f> parts,
                 const RasterPass& pass, CpuItem& item, CpuItemParts& rects) {
-  const Eigen::Matrix3d reach = toScreen.leftCols<3>().cwiseAbs();
   ScreenExtent all{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
                    Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
   bool any = false, finite = true;
@@ -79,9 +78,7 @@ void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3
       continue;
     }
     const Eigen::AlignedBox3d box = parts[p].cast<double>();
-    const Eigen::Vector3d mid = toScreen.leftCols<3>() * box.center() + toScreen.col(3);
-    const Eigen::Vector3d half = reach * (box.sizes() * 0.5);
-    const ScreenExtent e{mid - half, mid + half};
+    const ScreenExtent e = extentOf(toScreen, box.center(), box.sizes() * 0.5);
     rects[p] = pixelsOf(e, pass);
     all.lo = all.lo.cwiseMin(e.lo).eval();
     all.hi = all.hi.cwiseMax(e.hi).eval();
