@@ -391,7 +391,8 @@ TEST(SnapshotColouring, SetsPrunedAndColliding) {
 TEST(SnapshotColouring, FixedObjectsArePaleAndTheCameraIsFittedToWhatMoves) {
   SceneGeometry scene;
   scene.meshes = {makePlane(10.0, 2), makeTorus(0.5, 0.2, 8, 6)};
-  scene.objects = {{.mesh = 0, .fixed = true}, {.mesh = 1}, {.mesh = 1}};
+  scene.objects = {{.mesh = 0, .fixed = true, .group = {}}, {.mesh = 1, .fixed = false, .group = {}},
+                   {.mesh = 1, .fixed = false, .group = {}}};
   PotentiallyCollidingSets sets(1);
   sets[0].members = {{0, {}}, {1, {}}};
   ObjectColouring c = colourBySets(3, sets, {});
