@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "harness/BackendWarmUp.h"
+#include "harness/DetectorWarmUp.h"
 #include "harness/TruthComparison.h"
 
 namespace cdb {
@@ -57,12 +58,23 @@ std::vector<FrameRecord> measureCell(const Cell& cell, CellFrames& frames, Detec
   std::unique_ptr<CollisionDetector> detector;
   {
     const ScopedSeconds timed(time.setupSeconds);
-    detector = DetectorRegistry::builtin().createDetector(cell.strategy, options, backend,
-                                                          frames.exact());
-    detector->attach(frames.scene());
-    // Shader compilation and framebuffer allocation at this resolution are not CD time.
+    // Shader compilation and framebuffer allocation at this resolution are not CD time, nor is
+    // what the first frame touches for the first time (DetectorWarmUp).
     if (!drawsNothing)
       warmUpBackend(backend, frames.scene(), frames.recording().frame(0), cell.resolution);
+    const auto make = [&] {
+      auto made = DetectorRegistry::builtin().createDetector(cell.strategy, options, backend,
+                                                             frames.exact());
+      made->attach(frames.scene());
+      return made;
+    };
+    if (frames.measuredFrames().empty()) {
+      detector = make();
+    } else {
+      const std::uint32_t first = frames.measuredFrames().front();
+      detector = detectorAfterUntimedFrame(
+          make, {frames.recording().frame(first), static_cast<int>(first)});
+    }
   }
 
   std::vector<FrameRecord> rows;
