@@ -3,6 +3,7 @@
 of such folders, with the thesis' Tables 4.1-4.3.
 
 Usage: scripts/report.py RESULT_DIR [--thesis results/thesis/tables.csv] [--primary BACKEND]
+Exits 2 on bad input (nothing to report, a malformed file: named with its line), writing nothing.
 Runs on the system interpreter with Debian's python3-matplotlib; the code is the package scripts/report/.
 """
 

@@ -6,6 +6,13 @@ directly (RESULT_DIR/envN/), or one folder per visibility backend (RESULT_DIR/<b
 last layout every backend's environment folder gets its comparison.md and .csv (on the columns of the
 primary backend's tables), the primary backend's folders get the figures, and RESULT_DIR/REPORT.md holds
 the primary's tables and the backends side by side.
+
+Exit status: 0 when the report is written; 1 when it is written but no environment has finished results
+(runs still going: the report says how far they got); 2 for bad input, refused before anything is written
+(no REPORT.md, comparison or figure; one from before stays as it was) with one line on stderr naming the
+file and what is wrong: nothing to report under RESULT_DIR, a malformed frames.csv (a row cut off, a header
+without a needed column or without rows, a value that is not a number; file, line and column), an unreadable
+meta.json or thesis table, a --primary that names no backend folder.
 """
 
 import argparse
@@ -67,6 +74,7 @@ def run(result_dir: Path, thesis_path: Path, primary: str = None):
             _share_reference_rows([runs[b][name] for b in [primary] + [f for f in folders if f != primary]
                                    if b is not None])
     study = precision.read_study(result_dir)
+    _require_results(result_dir, runs, study)
     main = primary or ""
     sections, cost_models, others = [], [], []
     for name in names:
@@ -96,6 +104,34 @@ def run(result_dir: Path, thesis_path: Path, primary: str = None):
     tmp.write_text(text, encoding="utf-8")
     tmp.replace(report)
     return report, sections + others
+
+
+def _require_results(result_dir, runs, study):
+    """Nothing to report at all is bad input, refused before anything is written: no environment with frames
+    (or with a run still going, whose progress the report shows) and no precision study. A missing environment
+    beside others that have results is reported, not refused."""
+    every = [r for by_name in runs.values() for r in by_name.values()]
+    if any(r.status in ("ok", "incomplete") for r in every) or (study and any(r.status == "ok" for r in study.runs)):
+        return
+    what = "frames.csv, frames.csv.gz or tables.csv"
+    if len(every) == 1 and every[0].folder == result_dir:
+        raise InputError(f"{result_dir}: no results: a run folder without {what}")
+    looked = (f"looked for {result_dir}/env*/frames.csv and {result_dir}/<backend>/env*/frames.csv "
+              f"(or frames.csv.gz, or an older run's tables.csv)")
+    empty = [r.folder for r in every if r.status == "empty"]
+    if empty:
+        shown = ", ".join(_relative(f, result_dir) for f in empty)
+        raise InputError(f"{result_dir}: no results: {shown} hold{'s' if len(empty) == 1 else ''} no {what}; "
+                         f"{looked}")
+    found = "the folder is empty" if not any(result_dir.iterdir()) else "no environment folder"
+    raise InputError(f"{result_dir}: no results: {found}; {looked}")
+
+
+def _relative(folder, result_dir):
+    try:
+        return f"{folder.relative_to(result_dir)}/"
+    except ValueError:
+        return str(folder)
 
 
 def _share_reference_rows(env_runs):
@@ -191,6 +227,6 @@ def main(argv=None):
             print(f"{where}: {run_.status}")
     print(f"wrote {report}")
     if not any(s["run"].status == "ok" for s in sections):
-        print(f"report.py: no environment under {args.result_dir} has results", file=sys.stderr)
+        print(f"report.py: no environment under {args.result_dir} has finished results (see {report})", file=sys.stderr)
         return 1
     return 0

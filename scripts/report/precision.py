@@ -172,7 +172,7 @@ def _read_mode_run(backend, environment, folder):
     if config.get("ground_truth") is False:
         run.status = "no truth (run with --no-truth: nothing to count lost pairs against)"
         return run
-    for r in read_typed_csv(frames_csv, REQUIRED, FRAME_INTS, FRAME_TIMES):
+    for r in read_typed_csv(frames_csv, REQUIRED, FRAME_INTS, FRAME_TIMES, need_rows=True):
         key = (r["strategy"], r["resolution"], r["objects"])
         cell = run.cells.get(key) or run.cells.setdefault(key, Cell(*key))
         cell.truth_pairs += r["truth_pairs"]

@@ -13,7 +13,7 @@ FIGURE_RANGE = {"env1": "Figures 4.2-4.4", "env2": "Figures 4.6-4.9", "env3": "F
 STATUS_SHORT = {"missing": "not run", "empty": "no frames", "incomplete": "unfinished"}
 STATUS_TEXT = {
     "missing": "no folder: this environment was not run",
-    "empty": "no measured frames (no frames.csv or tables.csv, or only their headers)",
+    "empty": "no measured frames (no frames.csv, or a tables.csv without rows)",
     "incomplete": "no frames.csv: the run was interrupted or is still going; no results yet",
 }
 

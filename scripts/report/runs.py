@@ -120,7 +120,7 @@ def read_environment(result_dir: Path, name: str, backend: str = "", folder: Pat
         run.meta = _read_meta(meta_json)
 
     if frames_csv.exists():
-        run.frames = read_typed_csv(frames_csv, FRAME_REQUIRED, FRAME_INTS, FRAME_TIMES)
+        run.frames = read_typed_csv(frames_csv, FRAME_REQUIRED, FRAME_INTS, FRAME_TIMES, need_rows=True)
         run.cells = cells_from_frames(run.frames)
         shared = strategy_order({c.strategy for c in run.cells if c.shared})
         if shared and len({c.resolution for c in run.cells}) > 1:

@@ -11,8 +11,10 @@ class InputError(Exception):
     """An input file that cannot be read as documented; str() is the one-line message to print."""
 
 
-def read_typed_csv(path: Path, required, int_columns=(), float_columns=(), choices=None):
-    """Rows of `path` as dicts; the header must name every column in `required`.
+def read_typed_csv(path: Path, required, int_columns=(), float_columns=(), choices=None, need_rows=False):
+    """Rows of `path` as dicts; the header must name every column in `required`; with `need_rows`, a file
+    holding only its header is refused too (a file cut off after its first line, or written by a run that
+    measured nothing).
 
     `choices` maps a column to the values it may hold.
 
@@ -20,6 +22,7 @@ def read_typed_csv(path: Path, required, int_columns=(), float_columns=(), choic
     Times must be finite and non-negative: a NaN or negative time is a broken measurement, not data.
     A path ending in .gz is read through gzip (committed results keep frames.csv compressed).
     """
+    line = 0
     try:
         with _open_text(path) as f:
             reader = csv.reader(f)
@@ -29,14 +32,19 @@ def read_typed_csv(path: Path, required, int_columns=(), float_columns=(), choic
             header = [h.strip() for h in header]
             missing = [c for c in required if c not in header]
             if missing:
-                raise InputError(f"{path}:1: header lacks column(s) {', '.join(missing)}")
+                raise InputError(f"{path}:1: the header lacks column(s) {', '.join(missing)} "
+                                 f"(needed: {', '.join(required)})")
             rows = []
             for row in reader:
                 line = reader.line_num
                 if not row or all(not cell.strip() for cell in row):
                     continue
                 if len(row) != len(header):
-                    raise InputError(f"{path}:{line}: expected {len(header)} fields, got {len(row)}")
+                    try:
+                        last = next(reader, None) is None
+                    except (csv.Error, OSError, EOFError, UnicodeDecodeError):
+                        last = True     # what follows is broken too: the file ends there, as far as it reads
+                    raise InputError(_field_count_message(path, line, header, row, last))
                 record = dict(zip(header, (cell.strip() for cell in row)))
                 for name in int_columns:
                     if name in record:
@@ -49,9 +57,33 @@ def read_typed_csv(path: Path, required, int_columns=(), float_columns=(), choic
                         raise InputError(f"{path}:{line}: column {name}: expected one of "
                                          f"{', '.join(allowed)}, got {record.get(name)!r}")
                 rows.append(record)
+            if need_rows and not rows:
+                raise InputError(f"{path}: only its header (line 1), no rows: the file was cut off after its first "
+                                 f"line or its run measured nothing; run it again or remove the file")
             return rows
-    except (OSError, EOFError, UnicodeDecodeError, csv.Error) as e:
-        raise InputError(f"{path}: cannot read: {e}") from e
+    except csv.Error as e:
+        raise InputError(f"{path}:{line + 1}: not CSV: {e}") from e
+    except (OSError, EOFError, UnicodeDecodeError) as e:
+        where = f":{line + 1}" if line else ""
+        raise InputError(f"{path}{where}: cannot read: {e}") from e
+
+
+def _field_count_message(path, line, header, row, last):
+    """A row whose field count is not the header's: how many of which columns, and where a short row stops
+    (the last line of a file cut off mid-row, most often)."""
+    text = (f"{path}:{line}: expected {len(header)} columns ({_span(header)}), found {len(row)}")
+    if len(row) < len(header):
+        text += f": the row ends in column {header[len(row) - 1]}"
+        if last:
+            text += " and is the file's last line: the file was cut off mid-row"
+    else:
+        text += f": {len(row) - len(header)} more than the header names"
+    return text
+
+
+def _span(names):
+    """'a, b, c' for a few names; 'a, b, ..., z' for many."""
+    return ", ".join(names) if len(names) <= 4 else f"{names[0]}, {names[1]}, ..., {names[-1]}"
 
 
 def _parse_int(path, line, name, text):
