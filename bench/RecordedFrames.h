@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "culling/visibility/BackendResources.h"
-#include "harness/RecordedScene.h"
+#include "harness/measure/RecordedScene.h"
 
 namespace cdb::bench {
 

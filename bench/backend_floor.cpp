@@ -13,9 +13,9 @@
 #include <CLI/CLI.hpp>
 
 #include "core/Errors.h"
-#include "harness/FloorComparison.h"
-#include "harness/RecordedScene.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
+#include "harness/measure/FloorComparison.h"
+#include "harness/measure/RecordedScene.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"backend floor: a strategy's culling time against its own GL work replayed bare"};

@@ -32,7 +32,7 @@
 #include "culling/exact/ExactPhase.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "culling/visibility/cpu/CpuRasterBackend.h"
-#include "harness/BackendWarmUp.h"
+#include "harness/measure/BackendWarmUp.h"
 
 namespace cdb::bench {
 

@@ -16,7 +16,7 @@
 #include "bench/BenchmarkSuite.h"
 #include "culling/exact/ExactPhase.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
-#include "harness/BackendWarmUp.h"
+#include "harness/measure/BackendWarmUp.h"
 
 namespace cdb::bench {
 

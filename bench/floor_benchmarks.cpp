@@ -14,7 +14,7 @@
 #include <string>
 
 #include "bench/BenchmarkSuite.h"
-#include "harness/FloorComparison.h"
+#include "harness/measure/FloorComparison.h"
 
 namespace cdb::bench {
 

@@ -14,7 +14,7 @@
 
 #include "bench/BenchmarkSuite.h"
 #include "core/Errors.h"
-#include "harness/MachineInfo.h"
+#include "harness/common/MachineInfo.h"
 #include "scenes/ConfigLoader.h"
 #include "scenes/SceneBuilder.h"
 

@@ -1,4 +1,6 @@
 // cdbench: the command line. Exit codes: 0 success, 1 failure while running, 2 bad usage or input.
+// The commands' code lies in harness/'s rooms: run/ (run, merge), check/, snapshot/, and what they
+// share, tables/ (frames.csv, the tables, strategies --csv), measure/ and common/.
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
@@ -11,15 +13,15 @@
 #include "core/Errors.h"
 #include "culling/DetectorRegistry.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
-#include "harness/BuildCommit.h"
-#include "harness/FrameCsv.h"
-#include "harness/MergeRuns.h"
-#include "harness/RegressionCheck.h"
-#include "harness/RunOptions.h"
-#include "harness/ScenarioRunner.h"
-#include "harness/SnapshotCommand.h"
-#include "harness/StrategyListCsv.h"
-#include "harness/TableWriters.h"
+#include "harness/check/RegressionCheck.h"
+#include "harness/common/BuildCommit.h"
+#include "harness/run/MergeRuns.h"
+#include "harness/run/RunOptions.h"
+#include "harness/run/ScenarioRunner.h"
+#include "harness/snapshot/SnapshotCommand.h"
+#include "harness/tables/FrameCsv.h"
+#include "harness/tables/StrategyListCsv.h"
+#include "harness/tables/TableWriters.h"
 #include "render/HeadlessGlContext.h"
 #include "scenes/IntList.h"
 

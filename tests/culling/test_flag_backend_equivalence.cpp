@@ -1,7 +1,7 @@
 // gl-flags answers exactly as gl-queries does on real work: every image-based strategy culls a
 // recorded frame of env1, env2 and env3 on gl-queries, through a recording; the recorded work is
 // replayed on gl-flags, and every fetch must return the same answers, query by query. The frames
-// are the check's (harness/CheckPlan.cpp): cheap ones on which objects touch.
+// are the check's (harness/check/CheckPlan.cpp): cheap ones on which objects touch.
 //
 // On llvmpipe (Mesa 22.3) an occlusion query now and then counts a sample that its draw does not
 // have: on env1 at 800 px, one triangle query of `sorted`'s 24,270 answers "not fully visible";
@@ -23,7 +23,7 @@
 #include "culling/visibility/GlFlagBackend.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 #include "culling/visibility/RecordingBackend.h"
-#include "harness/CheckScenes.h"
+#include "harness/check/CheckScenes.h"
 #include "render/Gl.h"
 #include "render/HeadlessGlContext.h"
 

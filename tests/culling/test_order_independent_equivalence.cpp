@@ -1,7 +1,7 @@
 // cullide_oi on gl-flags prunes exactly what cullide prunes on gl-flags: on recorded frames of
-// env1 and env3 (the check's scenes, harness/CheckPlan.cpp), the objects left after the object
-// level (those the first triangle-level pass tests) and the potentially colliding set after the
-// triangle level are equal, object for object and triangle for triangle. Both run on the same
+// env1 and env3 (the check's scenes, harness/check/CheckPlan.cpp), the objects left after the
+// object level (those the first triangle-level pass tests) and the potentially colliding set after
+// the triangle level are equal, object for object and triangle for triangle. Both run on the same
 // backend, so the rasterisation and conservative depths are the same, and the order-independent
 // pass must give what CULLIDE's two sequential passes give together. Each of cullide_oi's passes
 // is at most three draws (the writes' two, the tests' one).
@@ -19,7 +19,7 @@
 #include "culling/DetectorRegistry.h"
 #include "culling/visibility/GlFlagBackend.h"
 #include "culling/visibility/RecordingBackend.h"
-#include "harness/CheckScenes.h"
+#include "harness/check/CheckScenes.h"
 #include "render/HeadlessGlContext.h"
 
 namespace cdb::order_independent_equivalence_test {

@@ -14,7 +14,7 @@
 #include "culling/exact/ExactPhase.h"
 #include "culling/exact/GroundTruth.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
-#include "harness/TruthComparison.h"
+#include "harness/measure/TruthComparison.h"
 
 namespace cdb {
 namespace {

@@ -12,8 +12,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "harness/BuildCommit.h"
-#include "harness/FrameCsv.h"
+#include "harness/common/BuildCommit.h"
+#include "harness/tables/FrameCsv.h"
 #include "tests/common/FreshTempDir.h"
 #include "tests/common/ShellCommand.h"
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "harness/FrameCsv.h"
+#include "harness/tables/FrameCsv.h"
 #include "tests/common/FreshTempDir.h"
 #include "tests/common/ShellCommand.h"
 

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "core/Pose.h"
-#include "harness/DetectorWarmUp.h"
+#include "harness/measure/DetectorWarmUp.h"
 
 namespace cdb {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/Errors.h"
-#include "harness/FrameCsv.h"
+#include "harness/tables/FrameCsv.h"
 #include "tests/common/FreshTempDir.h"
 #include "tests/common/ShellCommand.h"
 

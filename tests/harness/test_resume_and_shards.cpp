@@ -19,7 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/FrameCsv.h"
+#include "harness/tables/FrameCsv.h"
 #include "tests/common/ShellCommand.h"
 
 namespace fs = std::filesystem;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/RunPlan.h"
+#include "harness/run/RunPlan.h"
 
 namespace {
 

@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/RunPlan.h"
-#include "harness/RunTables.h"
-#include "harness/TableWriters.h"
+#include "harness/run/RunPlan.h"
+#include "harness/tables/RunTables.h"
+#include "harness/tables/TableWriters.h"
 
 namespace cdb {
 namespace {

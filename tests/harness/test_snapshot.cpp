@@ -18,11 +18,11 @@
 #include <vector>
 
 #include "core/Errors.h"
-#include "harness/FrameCsv.h"
-#include "harness/SnapshotColouring.h"
-#include "harness/SnapshotLegend.h"
-#include "harness/SnapshotOptions.h"
-#include "harness/SnapshotPicture.h"
+#include "harness/snapshot/SnapshotColouring.h"
+#include "harness/snapshot/SnapshotLegend.h"
+#include "harness/snapshot/SnapshotOptions.h"
+#include "harness/snapshot/SnapshotPicture.h"
+#include "harness/tables/FrameCsv.h"
 #include "render/ImageText.h"
 #include "scenes/ProceduralMeshes.h"
 #include "tests/common/FreshTempDir.h"

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "harness/TruthComparison.h"
+#include "harness/measure/TruthComparison.h"
 
 namespace cdb {
 namespace {

@@ -1,0 +1,53 @@
+#pragma once
+// results/baseline.json: the ratios `cdbench check --update-baseline` measured, the machine and
+// renderer they were measured on, and the rule by which a later check judges its own ratios
+// against them.
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/check/CheckTiming.h"
+
+namespace cdb {
+
+struct CheckBaseline {
+  std::string createdUtc;
+  // Per visibility backend, what rendered (VisibilityBackend::renderer(): the GL renderer, or the
+  // CPU rasteriser's instruction set and threads): ratios of another renderer are not comparable.
+  std::map<std::string, std::string> renderers;
+  std::string buildType;   // CMAKE_BUILD_TYPE: nor are those of an unoptimised build
+  nlohmann::json machine;  // MachineInfo, for the reader
+  nlohmann::json gl;       // platform, vendor, renderer, version (null when no GL was opened)
+  std::vector<std::string> commandLine;
+  std::map<std::string, RatioMeasurement> ratios;  // by RatioMeasurement::key
+};
+
+// Throws InputError naming the file when it is missing, not JSON or not a baseline.
+[[nodiscard]] CheckBaseline readCheckBaseline(const std::filesystem::path& file);
+// Written atomically; throws RunError when the file cannot be written.
+void writeCheckBaseline(const CheckBaseline& baseline, const std::filesystem::path& file);
+
+// The tolerance rule. On the 2-core llvmpipe machine, over 18 checks alone and under load (README,
+// "CI regression check"), a speedup's largest value stayed within 1.25x its smallest and a
+// strategy/floor ratio, ~1 by nature, within 0.90..1.06; an injected 3x slowdown of one strategy
+// takes a speedup to a third and its floor ratio to ~3. The floor allowance is the wider one
+// because a strategy twice its floor (its own CPU work as long as all its GL work) is the first
+// overhead that is a clear regression rather than a cost of its bookkeeping.
+//  Speedup:   fails below baseline / kSpeedupTolerance.
+//  OverFloor: fails above max(baseline * kFloorTolerance, kFloorAllowedAtLeast): a strategy within
+//             kFloorAllowedAtLeast of its floor is never a regression, whatever its baseline.
+inline constexpr double kSpeedupTolerance = 1.5;
+inline constexpr double kFloorTolerance = 1.5;
+inline constexpr double kFloorAllowedAtLeast = 2.0;
+
+struct RatioVerdict {
+  double allowed = 0;  // the bound the measured value is held to (a minimum for a speedup)
+  bool passed = false;
+};
+
+[[nodiscard]] RatioVerdict judgeRatio(RatioKind kind, double baseline, double measured);
+
+}  // namespace cdb

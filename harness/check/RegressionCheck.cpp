@@ -1,0 +1,306 @@
+#include "harness/check/RegressionCheck.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/Errors.h"
+#include "culling/visibility/VisibilityBackendRegistry.h"
+#include "harness/check/CheckBaseline.h"
+#include "harness/check/CheckScenes.h"
+#include "harness/common/MachineInfo.h"
+#include "render/HeadlessGlContext.h"
+
+#ifndef CDBENCH_SOURCE_DIR
+#define CDBENCH_SOURCE_DIR "."
+#endif
+
+namespace cdb {
+
+std::filesystem::path defaultBaselineFile() {
+  return std::filesystem::path(CDBENCH_SOURCE_DIR) / "results" / "baseline.json";
+}
+
+std::filesystem::path defaultConfigDir() { return std::filesystem::path(CDBENCH_SOURCE_DIR) / "configs"; }
+
+std::size_t CheckReport::correctnessFailures() const {
+  return static_cast<std::size_t>(std::count_if(correctness.begin(), correctness.end(),
+                                                [](const CorrectnessRow& r) { return !r.passed(); }));
+}
+
+std::size_t CheckReport::timingFailures() const {
+  return static_cast<std::size_t>(std::count_if(
+      timing.begin(), timing.end(), [](const TimingRow& r) { return r.status == RatioStatus::Fail; }));
+}
+
+namespace {
+
+using CheckClock = std::chrono::steady_clock;
+
+void reportStep(const CheckOptions& options, CheckClock::time_point start, const std::string& what) {
+  if (!options.progress) return;
+  std::fprintf(options.progress, "check: %5.1f s: %s\n",
+               std::chrono::duration<double>(CheckClock::now() - start).count(), what.c_str());
+  std::fflush(options.progress);
+}
+
+std::string describeBaseline(const CheckBaseline& b) {
+  std::string renderers;
+  for (const auto& [backend, renderer] : b.renderers)
+    renderers += (renderers.empty() ? "" : ", ") + backend + " on " + renderer;
+  return b.createdUtc + " on " + b.machine.value("cpu", std::string("?")) + " (" +
+         std::to_string(b.machine.value("logical_cores", 0)) + " cores), " + renderers + ", " +
+         b.buildType + " build";
+}
+
+// Compares every measured ratio with the baseline's, or marks why it is not compared.
+void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const MachineInfo& machine) {
+  // Why a backend's ratios are not compared, per backend ("" = compared).
+  std::map<std::string, std::string> skipWhy;
+  for (const auto& backend : report.timedBackends) {
+    const std::string& renderer = report.renderers.at(backend);
+    std::string& why = skipWhy[backend];
+    const auto it = baseline.renderers.find(backend);
+    if (it == baseline.renderers.end())
+      why = "the baseline has no ratios of the " + backend + " backend";
+    else if (it->second != renderer)
+      why = "the baseline's " + backend + " ratios were measured on '" + it->second +
+            "', this run's on '" + renderer + "'";
+    else if (baseline.buildType != machine.buildType)
+      why = "the baseline was measured in a " + baseline.buildType + " build, this is a " +
+            machine.buildType + " build";
+    if (!why.empty())
+      report.notes.push_back(backend + " timing not compared: " + why +
+                             "; ratios of different renderers or builds are not comparable "
+                             "(record a baseline for this one with --update-baseline)");
+  }
+  const bool anyCompared = std::any_of(skipWhy.begin(), skipWhy.end(),
+                                       [](const auto& kv) { return kv.second.empty(); });
+  if (!anyCompared) {
+  } else if (baseline.machine.value("cpu", std::string()) != machine.cpuModel ||
+             baseline.machine.value("logical_cores", 0u) != machine.logicalCores) {
+    report.notes.push_back("the baseline was measured on another CPU (" + describeBaseline(baseline) +
+                           "); compared anyway: same renderer and build type");
+  }
+  std::vector<std::string> added;
+  for (auto& row : report.timing) {
+    const auto it = baseline.ratios.find(row.measured.key);
+    if (it == baseline.ratios.end()) {
+      row.status = RatioStatus::New;
+      added.push_back(row.measured.key);
+      continue;
+    }
+    row.baseline = it->second.value;
+    if (!skipWhy[row.measured.backend].empty()) {
+      row.status = RatioStatus::NotCompared;
+      continue;
+    }
+    const RatioVerdict v = judgeRatio(row.measured.kind, it->second.value, row.measured.value);
+    row.allowed = v.allowed;
+    row.status = v.passed ? RatioStatus::Pass : RatioStatus::Fail;
+  }
+  if (!added.empty())
+    report.notes.push_back(std::to_string(added.size()) +
+                           " ratio(s) not in the baseline, not compared (first: " + added.front() +
+                           "); record them with --update-baseline");
+  // The baseline's ratios of backends this run does not time are not stale: another check, with
+  // those backends timed, compares them.
+  const auto timed = [&](const std::string& backend) {
+    return std::find(report.timedBackends.begin(), report.timedBackends.end(), backend) !=
+           report.timedBackends.end();
+  };
+  std::size_t stale = 0, untimed = 0;
+  for (const auto& entry : baseline.ratios) {
+    const std::string& key = entry.first;  // a name, not a binding: lambdas capture it in clang 14
+    if (!timed(entry.second.backend)) {
+      ++untimed;
+    } else if (std::none_of(report.timing.begin(), report.timing.end(),
+                            [&](const TimingRow& t) { return t.measured.key == key; })) {
+      ++stale;
+    }
+  }
+  if (stale > 0)
+    report.notes.push_back(std::to_string(stale) + " ratio(s) of the baseline not measured by this plan");
+  if (untimed > 0)
+    report.notes.push_back(std::to_string(untimed) +
+                           " ratio(s) of the baseline belong to backends whose timing this run does "
+                           "not measure, not compared");
+}
+
+}  // namespace
+
+CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& plan,
+                               const DetectorRegistry& registry) {
+  const auto start = CheckClock::now();
+  CheckReport report;
+  report.baselineFile = options.baselineFile;
+  // Read first: a missing baseline is reported before a minute of measuring.
+  std::optional<CheckBaseline> baseline;
+  if (!options.updateBaseline) {
+    baseline = readCheckBaseline(options.baselineFile);
+    report.baselineDescription = describeBaseline(*baseline);
+  }
+  const std::vector<std::string> strategies = plan.strategies.empty() ? registry.names() : plan.strategies;
+  registry.validate(strategies);
+
+  const auto& backendRegistry = VisibilityBackendRegistry::builtin();
+  BackendResources resources(parseGlPlatform(options.glPlatform));
+  std::vector<std::string> backends = options.backends;
+  if (backends.empty()) {
+    std::vector<std::string> why;
+    backends = backendRegistry.available(resources, &why);
+    for (const auto& w : why) report.notes.push_back("backend not checked, it does not start here: " + w);
+    if (backends.empty()) throw RunError("no visibility backend starts here");
+  }
+  for (const auto& b : backends) {
+    backendRegistry.validate(b);
+    report.renderers[b] = backendRegistry.create(b, resources, {})->renderer();
+  }
+  for (const auto& b : options.timingBackends) backendRegistry.validate(b);
+  for (const auto& b : backends) {
+    const auto& t = options.timingBackends;
+    if (t.empty() || std::find(t.begin(), t.end(), b) != t.end())
+      report.timedBackends.push_back(b);
+    else
+      report.notes.push_back(b + ": correctness only, its timing is not measured (not one of the timing backends)");
+  }
+  for (const auto& b : options.timingBackends)
+    if (std::find(backends.begin(), backends.end(), b) == backends.end())
+      report.notes.push_back(b + " timing not measured: the backend is not checked here (not named, or it does "
+                             "not start)");
+  CheckScenes scenes(options.configDir, options.assetDirs);
+  // The strategies each backend runs (order-independent passes need a backend that offers them).
+  const auto runsOn = [&](const std::string& backend) {
+    std::vector<std::string> out;
+    for (const auto& s : strategies)
+      if (registry.runsOn(s, backend)) out.push_back(s);
+    return out;
+  };
+  for (const auto& b : backends)
+    for (const auto& s : strategies)
+      if (!registry.runsOn(s, b))
+        report.notes.push_back(s + " not checked on " + b +
+                               ": it needs order-independent passes, which the backend does not offer");
+
+  for (const auto& c : plan.correctness)
+    for (std::size_t k = 0; k < backends.size(); ++k) {
+      reportStep(options, start, backends[k] + ": correctness on " + c.scene.label());
+      // The CPU peers use no backend: checked once, with the first.
+      auto rows =
+          checkCorrectness(resources, backends[k], k == 0, scenes, {c}, runsOn(backends[k]), registry);
+      report.correctness.insert(report.correctness.end(), rows.begin(), rows.end());
+    }
+  std::vector<RatioMeasurement> ratios;
+  std::vector<std::string> withoutFloor;
+  for (const auto& backend : report.timedBackends) {
+    for (const auto& c : plan.speedups) {
+      reportStep(options, start, backend + ": timing " + c.key());
+      auto m = measureSpeedups(resources, backend, scenes, {c}, registry);
+      ratios.insert(ratios.end(), m.begin(), m.end());
+    }
+    for (const auto& c : plan.floors) {
+      reportStep(options, start, backend + ": timing each strategy against its floor on " + c.scene.label());
+      auto m = measureFloors(resources, backend, scenes, {c}, runsOn(backend), registry, withoutFloor);
+      ratios.insert(ratios.end(), m.begin(), m.end());
+    }
+  }
+  for (auto& m : ratios) report.timing.push_back({std::move(m), std::nullopt, std::nullopt, RatioStatus::New});
+  if (!withoutFloor.empty()) {
+    std::string names;
+    for (const auto& n : withoutFloor) names += (names.empty() ? "" : ", ") + n;
+    report.notes.push_back(names + ": no backend work, so no backend floor to compare with");
+  }
+
+  const MachineInfo machine = probeMachine();
+  if (baseline) {
+    judgeAgainst(report, *baseline, machine);
+  } else if (report.correctnessFailures() > 0) {
+    report.notes.push_back("baseline not written: the correctness part failed");
+  } else {
+    CheckBaseline b;
+    b.createdUtc = utcTimestamp();
+    for (const auto& backend : report.timedBackends) b.renderers[backend] = report.renderers.at(backend);
+    b.buildType = machine.buildType;
+    b.machine = toJson(machine);
+    if (const HeadlessGlContext* gl = resources.openedGl()) b.gl = toJson(gl->info());
+    b.commandLine = options.commandLine;
+    for (auto& row : report.timing) {
+      b.ratios[row.measured.key] = row.measured;
+      row.status = RatioStatus::Recorded;
+    }
+    writeCheckBaseline(b, options.baselineFile);
+    report.baselineWritten = true;
+    report.baselineDescription = describeBaseline(b);
+  }
+  report.seconds = std::chrono::duration<double>(CheckClock::now() - start).count();
+  return report;
+}
+
+namespace {
+
+const char* ratioStatusText(RatioStatus s) {
+  switch (s) {
+    case RatioStatus::Pass: return "PASS";
+    case RatioStatus::Fail: return "FAIL";
+    case RatioStatus::NotCompared: return "not compared";
+    case RatioStatus::New: return "new";
+    case RatioStatus::Recorded: return "recorded";
+  }
+  return "";
+}
+
+}  // namespace
+
+void printCheckReport(const CheckReport& r, std::FILE* out) {
+  for (const auto& [backend, renderer] : r.renderers)
+    std::fprintf(out, "backend:     %s on %s%s\n", backend.c_str(), renderer.c_str(),
+                 std::find(r.timedBackends.begin(), r.timedBackends.end(), backend) == r.timedBackends.end()
+                     ? " (correctness only)"
+                     : "");
+  std::fprintf(out, "baseline:    %s%s (%s)\n", r.baselineFile.c_str(),
+               r.baselineWritten ? " written" : "", r.baselineDescription.c_str());
+
+  std::fprintf(out, "\ncorrectness: each strategy's colliding pairs against the ground truth's\n");
+  std::fprintf(out, "%-10s %-18s %5s  %-13s %4s %6s %6s %6s %6s %6s  %s\n", "backend", "scene",
+               "frame", "strategy", "res", "truth", "found", "missed", "extra", "split", "result");
+  for (const auto& c : r.correctness) {
+    const std::string res = c.resolution > 0 ? std::to_string(c.resolution) : "-";
+    std::fprintf(out, "%-10s %-18s %5d  %-13s %4s %6zu %6zu %6llu %6llu %6llu  %s\n",
+                 c.backend.c_str(), c.scene.c_str(), c.frame, c.strategy.c_str(), res.c_str(),
+                 c.truthPairs, c.foundPairs,
+                 static_cast<unsigned long long>(c.comparison.falseNegatives),
+                 static_cast<unsigned long long>(c.comparison.falsePositives),
+                 static_cast<unsigned long long>(c.comparison.cullingMisses),
+                 c.passed() ? "PASS" : (c.truthPairs == 0 ? "FAIL (no truth pair: vacuous frame)" : "FAIL"));
+  }
+  std::fprintf(out,
+               "  missed: truth pairs not found; extra: pairs found that the truth lacks; split: truth\n"
+               "  pairs pruned or split across sets before the exact phase; res -, backend -: a CPU peer (no\n"
+               "  image, run once)\n");
+
+  std::fprintf(out,
+               "\ntiming: culling-time ratios measured in this process on the same frames, each the\n"
+               "median of its rounds' ratios (ms: the times of that round)\n");
+  std::fprintf(out, "%-64s %9s %19s %9s %10s  %s\n", "ratio", "measured", "(ms / ms)", "baseline",
+               "allowed", "result");
+  for (const auto& t : r.timing) {
+    char times[40], base[24] = "-", allowed[24] = "-";
+    std::snprintf(times, sizeof times, "(%.1f / %.1f)", t.measured.numeratorMs, t.measured.denominatorMs);
+    if (t.baseline) std::snprintf(base, sizeof base, "%.3f", *t.baseline);
+    if (t.allowed)
+      std::snprintf(allowed, sizeof allowed, "%s %.3f",
+                    t.measured.kind == RatioKind::Speedup ? ">=" : "<=", *t.allowed);
+    std::fprintf(out, "%-64s %9.3f %19s %9s %10s  %s\n", t.measured.key.c_str(), t.measured.value,
+                 times, base, allowed, ratioStatusText(t.status));
+  }
+  std::fprintf(out,
+               "  a/b: culling time of a over b's (higher: b faster), allowed >= baseline / %g;\n"
+               "  x/floor: x's culling time over its backend work replayed bare, allowed <= max(baseline * %g, %g)\n",
+               kSpeedupTolerance, kFloorTolerance, kFloorAllowedAtLeast);
+
+  for (const auto& n : r.notes) std::fprintf(out, "note: %s\n", n.c_str());
+  std::fprintf(out, "\ncheck: %s: %zu of %zu correctness rows and %zu of %zu ratios failed (%.1f s)\n",
+               r.passed() ? "PASS" : "FAIL", r.correctnessFailures(), r.correctness.size(),
+               r.timingFailures(), r.timing.size(), r.seconds);
+}
+
+}  // namespace cdb
