@@ -3,6 +3,8 @@
 
 - Every relative link (Markdown links and images, HTML src/href) names a file or folder that exists,
   and an anchor (#section) names a heading of the page it points to (GitHub's heading ids).
+- Every source file a page names by its path (harness/run/RunPlan.h, scripts/reproduce.sh: a path under
+  one of the code folders with a source file's ending) exists, so moving code cannot strand a page.
 - Every `cdbench SUBCOMMAND --option` written in a code span or block names a subcommand the CLI
   accepts and options that subcommand accepts, as the program's own --help lists them.
 
@@ -33,6 +35,9 @@ CODE_SPAN = re.compile(r"(`+)(.+?)\1")
 FENCE = re.compile(r"^\s{0,3}(```+|~~~+)")
 # A program invocation: cdbench, build/cdbench, ./build-asan/cdbench, "$CDBENCH" is not one.
 CDBENCH = re.compile(r"(?:^|(?<=[\s(;&|`'\"=]))(?:[\w./-]*/)?cdbench(?=\s|$)")
+# A source file named by its path from the repository's root, in prose or code.
+SOURCE_PATH = re.compile(r"(?<![\w./-])((?:harness|culling|scenes|core|render|tests|bench|fuzz|scripts|cmake)"
+                         r"/[\w./+-]*\.(?:h|hpp|cpp|cc|py|sh|cmake|txt|sbatch|supp))(?![\w/-])")
 # What ends one command on a line.
 SHELL_BREAK = {"|", "||", "&&", ";", "&", ">", ">>", "2>", "2>&1", "<", ")", "#"}
 
@@ -220,6 +225,12 @@ def check_page(page, cli, counts=None):
             problem = link_problem(page, target)
             if problem:
                 problems.append(f"{rel}:{number}: {problem}")
+    for number, line in enumerate(text.splitlines(), start=1):
+        for m in SOURCE_PATH.finditer(line):
+            if not (ROOT / m.group(1)).exists():
+                problems.append(f"{rel}:{number}: {m.group(1)} does not exist")
+            elif counts is not None:
+                counts["paths"] = counts.get("paths", 0) + 1
     for number, code, fenced in code_texts(text):
         for problem in command_problems(code, cli, counts, fenced):
             problems.append(f"{rel}:{number}: {problem}")
@@ -254,7 +265,8 @@ def main(argv=None):
     for problem in problems:
         print(problem)
     options = sum(len(v) for v in cli.subcommands.values())
-    print(f"check_docs: {len(pages)} pages, {counts.get('links', 0)} links, {counts.get('commands', 0)} cdbench "
+    print(f"check_docs: {len(pages)} pages, {counts.get('links', 0)} links, {counts.get('paths', 0)} source paths, "
+          f"{counts.get('commands', 0)} cdbench "
           f"commands against {len(cli.subcommands)} subcommands ({options} options): {len(problems)} problem(s)",
           file=sys.stderr)
     return 1 if problems else 0

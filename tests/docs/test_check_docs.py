@@ -1,5 +1,6 @@
-"""scripts/check_docs.py: README.md and docs/ hold only links that resolve and `cdbench` commands the
-CLI accepts; and the check fails on a broken link, a missing anchor, an unknown subcommand or option."""
+"""scripts/check_docs.py: README.md and docs/ hold only links that resolve, source paths that exist and
+`cdbench` commands the CLI accepts; and the check fails on a broken link, a missing anchor, a source
+file that is not there, an unknown subcommand or option."""
 
 import os
 import subprocess
@@ -38,7 +39,7 @@ class CheckDocsTest(unittest.TestCase):
         done = run_check()
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
         # It read the pages and found commands to check, not nothing.
-        self.assertRegex(done.stderr, r"[1-9]\d* links, [1-9]\d* cdbench commands")
+        self.assertRegex(done.stderr, r"[1-9]\d* links, [1-9]\d* source paths, [1-9]\d* cdbench commands")
 
     def test_good_links_and_commands_pass(self):
         page = self.page("See [the other page](other.md#running-a-sweep), ![a picture](picture.png),\n"
@@ -78,6 +79,13 @@ class CheckDocsTest(unittest.TestCase):
         done = run_check(self.page("Then `cdbench run configs/env1.yaml --update-baseline`."))
         self.assertEqual(done.returncode, 1)
         self.assertIn("run has no option --update-baseline", done.stdout)
+
+    def test_a_source_file_that_moved_fails(self):
+        done = run_check(self.page("The tables are written by harness/TableWriters.cpp and\n"
+                                   "`scripts/reproduce.sh` runs them."))
+        self.assertEqual(done.returncode, 1)
+        self.assertIn("page.md:3: harness/TableWriters.cpp does not exist", done.stdout)
+        self.assertNotIn("reproduce.sh", done.stdout)
 
     def test_a_subcommand_the_cli_does_not_have_fails(self):
         done = run_check(self.page("```\ncdbench sweep configs/env1.yaml\n```\n\nand `cdbench chekc`"))
