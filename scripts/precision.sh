@@ -29,6 +29,10 @@
 # gave ratios off by 2x on a loaded machine). --jobs N runs N/2 such pairs at once (default: the
 # cores; one pair for a backend that needs GL, as scripts/reproduce.sh runs GL one share at a
 # time).
+# Prints one line per environment and backend (its cells, share pairs and time) and one at the end;
+# each cdbench command's own output goes into OUT/logs/precision/ (one log per share and mode, and
+# per merge), of which the last lines are printed, with the log's path, only when that command
+# fails.
 # --dry-run prints the cdbench commands instead of running them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -72,6 +76,26 @@ gl_plan=("cullide,quick_cullide,sorted,cis,ours" "$repeats" "--frame-stride 100"
 # Frames and object counts per environment (the main run simulated 300 frames of each).
 declare -A frames=([env1]="--frame-stride 50" [env2]="--frame-stride 50" [env3]="--frame-stride 20 --objects 200")
 needs_gl() { build/cdbench backends | grep -q "^$1 .*needs EGL"; }
+logs=$out/logs/precision
+# say TEXT: a line of progress (on a terminal it replaces the "...: running" line before it).
+say() {
+  if [[ -t 2 ]]; then printf '\r\033[K' >&2; fi
+  echo "precision: $*" >&2
+}
+# running TEXT: on a terminal, what runs now, until the next line replaces it.
+running() { if [[ -t 2 ]]; then printf 'precision: %s: running ...' "$*" >&2; fi; }
+# cell_counts LOG...: "MEASURED RESUMED" summed over what each share said when done (nothing when
+# no log says it).
+cell_counts() {
+  awk 'match($0, /[0-9]+ cells measured, [0-9]+ resumed/) {
+      split(substr($0, RSTART, RLENGTH), w, " "); m += w[1]; r += w[4]; n++ }
+    END { if (n) print m, r }' "$@" 2>/dev/null
+}
+# tail_of LOG: its last lines, indented, after the line saying where it is.
+tail_of() {
+  say "  the last lines of $1:"
+  tail -n 12 "$1" | sed 's/^/    /' >&2
+}
 # Shares per mode: one per cell, so that the two modes of every cell start together, where a
 # share's set-up (scene, ground truth, recording) takes well under a second; env2's takes ~3 s
 # (the dragons' trees), so its cells are dealt over 6 shares.
@@ -83,7 +107,7 @@ declare -A coarse=([env2]=6)
 # load), `pairs` such pairs at once.
 study() {
   local backend=$1 env=$2 strategies=$3 repeats=$4 which=$5
-  local src=$out/$main/$2/recordings pairs shares pids=() status=0 t0=$SECONDS
+  local src=$out/$main/$2/recordings pairs shares pids=() logs_of=() status=0 t0=$SECONDS failed_logs=()
   if needs_gl "$backend" && ((!jobs_given)); then
     pairs=1
   else
@@ -95,22 +119,25 @@ study() {
   ((shares >= pairs)) || shares=$pairs
   ((shares <= cells)) || shares=$cells
   ((pairs <= shares)) || pairs=$shares
-  echo "== precision: $env on $backend ($profile, $shares shares per mode, $pairs pair(s) at once)" >&2
+  local what="$env on $backend ($profile)" log=$logs/$backend-$env
+  ((dry)) && echo "== precision: $what: $shares shares per mode, $pairs pair(s) at once" >&2
   for mode in raw conservative; do
     local dir=$out/precision/$backend/$env/$mode
     if ((dry)); then
       echo "recordings: $src -> $dir/recordings"
       continue
     fi
-    mkdir -p "$dir/recordings"
+    mkdir -p "$dir/recordings" "$logs"
+    rm -f "$log-$mode".*.log
     if [[ -d $src ]]; then
       # Hard links where the file system allows them: the recordings are read, never written.
       cp -l -f "$src"/*.poses "$dir/recordings/" 2>/dev/null || cp -f "$src"/*.poses "$dir/recordings/" 2>/dev/null ||
-        echo "precision: no recording in $src; $env is simulated again" >&2
-    else
-      echo "precision: $src not found; $env is simulated again" >&2
+        if [[ $mode == raw ]]; then say "no recording in $src; $env is simulated again"; fi
+    elif [[ $mode == raw ]]; then
+      say "$src not found; $env is simulated again"
     fi
   done
+  ((dry)) || running "$what: $cells cells in each mode, $shares share pairs"
   for ((i = 1; i <= shares; ++i)); do
     for mode in raw conservative; do
       # shellcheck disable=SC2206 # $which holds several options
@@ -121,47 +148,74 @@ study() {
       if ((dry)); then
         echo "${cmd[*]}"
       else
-        "${cmd[@]}" &
+        "${cmd[@]}" >"$log-$mode.share-$i-of-$shares.log" 2>&1 &
         pids+=($!)
+        logs_of+=("$log-$mode.share-$i-of-$shares.log")
       fi
     done
     if ((${#pids[@]} >= 2 * pairs)); then
-      wait "${pids[0]}" || status=1
-      wait "${pids[1]}" || status=1
+      wait "${pids[0]}" || failed_logs+=("${logs_of[0]}")
+      wait "${pids[1]}" || failed_logs+=("${logs_of[1]}")
       pids=("${pids[@]:2}")
+      logs_of=("${logs_of[@]:2}")
     fi
   done
   ((dry)) && return 0
-  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+  local k
+  for k in "${!pids[@]}"; do wait "${pids[k]}" || failed_logs+=("${logs_of[k]}"); done
+  ((${#failed_logs[@]} == 0)) || status=1
   # One meta.json listing every share (the shares' own shard-*.json, one per cell, then go).
+  local merge_failed=()
   for mode in raw conservative; do
     local dir=$out/precision/$backend/$env/$mode
-    if build/cdbench merge --out "$dir" "$dir" >/dev/null 2>&1; then
+    if build/cdbench merge --out "$dir" "$dir" >"$log-$mode.merge.log" 2>&1; then
       rm -f "$dir"/shard-*.json
     else
       status=1
+      merge_failed+=("$log-$mode.merge.log")
     fi
   done
-  echo "precision: $env on $backend took $((SECONDS - t0)) s" >&2
-  return $status
+  local counts measured resumed done_text
+  counts=$(cell_counts "$log"-raw.share-*.log "$log"-conservative.share-*.log)
+  read -r measured resumed <<<"${counts:-- -}"
+  if [[ $measured == - ]]; then
+    done_text="$cells cells in each mode, raw and conservative"
+  elif ((resumed == 0)); then
+    done_text="$cells cells in each mode, raw and conservative ($measured measured)"
+  else
+    done_text="$cells cells in each mode, raw and conservative ($measured measured, $resumed resumed)"
+  fi
+  if ((status == 0)); then
+    say "$what: $done_text in $shares share pairs ($pairs at once), $((SECONDS - t0)) s"
+    return 0
+  fi
+  if ((${#failed_logs[@]})); then
+    say "$what FAILED after $((SECONDS - t0)) s: ${#failed_logs[@]} of $((2 * shares)) shares" \
+      "failed (logs: $log-*.log)"
+    tail_of "${failed_logs[0]}"
+  else
+    say "$what FAILED after $((SECONDS - t0)) s: cdbench merge failed"
+    tail_of "${merge_failed[0]}"
+  fi
+  return 1
 }
 
 start=$(date +%s)
 failed=()
 for env in ${envs//,/ }; do
-  [[ -n ${frames[$env]:-} ]] || { echo "precision: $env: not part of the study (env1, env2, env3)" >&2; continue; }
+  [[ -n ${frames[$env]:-} ]] || { say "$env: not part of the study (env1, env2, env3)"; continue; }
   study cpu "$env" "$all" "$repeats" "${frames[$env]}" || failed+=("cpu/$env")
 done
 if [[ ,$envs, == *,env1,* ]]; then
   if ((dry)) || build/cdbench info 2>/dev/null | grep -q "^  gl-flags  *works"; then
     study gl-flags env1 "${gl_plan[@]}" || failed+=("gl-flags/env1")
   else
-    echo "precision: gl-flags does not start here; its env1 part is left out" >&2
+    say "gl-flags does not start here; its env1 part is left out"
   fi
 fi
 ((dry)) && exit 0
-echo "precision: $profile study done in $(($(date +%s) - start)) s: $out/precision" >&2
+say "$profile study done in $(($(date +%s) - start)) s: $out/precision (logs: $logs)"
 if ((${#failed[@]})); then
-  echo "precision: failed: ${failed[*]} (rerun to resume)" >&2
+  say "failed: ${failed[*]} (rerun to resume)"
   exit 1
 fi

@@ -44,6 +44,17 @@
 # --primary NAME` on a machine with python3-matplotlib.
 # env2 needs the Stanford dragon (dragon_vrip_res3) on the asset path ($CDBENCH_ASSETS, then
 # assets/); when it is not there, scripts/fetch-assets.sh fetches it into assets/ first.
+# What it prints: the set-up's own output (scripts/setup.sh, scripts/fetch-assets.sh) where they
+# run, then one line per step: the build (its output in OUT/logs/build.log), each environment on
+# each backend (e.g. "reproduce: env1 1/3 on cpu (quick): 44 cells measured in 2 shares, 1320
+# frames, 0 false negatives, 61 s"), the snapshots, the precision study's environments
+# (scripts/precision.sh), and at the end where REPORT.md is and its headline lines
+# (scripts/report/headlines.py: correctness, each environment's speedups of ours against the
+# thesis', whether the culling pays, what raw rasterisation loses). What each cdbench command and
+# the report print goes into a log under OUT/logs/ (one per share: logs/<backend>-<env>.share-I-
+# of-N.log; the study's under logs/precision/; not committed: .gitignore), and is shown (its last
+# lines, with the log's path) only when that command fails. A failed step is named, the others
+# go on, and the script exits non-zero at the end (a failed build stops it at once).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 profile=quick
@@ -80,6 +91,30 @@ case "$profile" in
   full) common=() ;;
 esac
 
+out=${out:-results/$profile}
+logs=$out/logs
+mkdir -p "$logs"
+# say TEXT: a line of progress (on a terminal it replaces the "...: running" line before it).
+say() {
+  if [[ -t 2 ]]; then printf '\r\033[K' >&2; fi
+  echo "reproduce: $*" >&2
+}
+# running TEXT: on a terminal, what runs now, until the next line replaces it.
+running() { if [[ -t 2 ]]; then printf 'reproduce: %s: running ...' "$*" >&2; fi; }
+# show_log LOG [LINES]: the last lines of a failed command's log, indented, after its path.
+show_log() {
+  say "  the last lines of $1:"
+  tail -n "${2:-12}" "$1" | sed 's/^/    /' >&2
+}
+# cell_counts LOG...: "MEASURED RESUMED" summed over what each share of a run said when done
+# ("shard done: N cells measured, M resumed" or "wrote ... (N cells measured, M resumed; ...)").
+cell_counts() {
+  awk 'match($0, /[0-9]+ cells measured, [0-9]+ resumed/) {
+      split(substr($0, RSTART, RLENGTH), w, " "); m += w[1]; r += w[4]; n++ }
+    END { if (n) print m, r }' "$@" 2>/dev/null
+}
+say "$profile profile on $primary: ${envs//,/, } into $out (the commands' output: $logs/)"
+
 if ((build)); then bash scripts/setup.sh; fi
 # The meshes the chosen environments need and the project does not ship (set-up installs npm,
 # which fetches them). Without them those environments fail; the others still run.
@@ -89,10 +124,24 @@ for env in ${envs//,/ }; do
       echo "reproduce: $env needs dragon_vrip_res3 and will fail (see the line above)" >&2
   fi
 done
-if ((build)); then CDBENCH_BUILD_TARGETS=cdbench bash scripts/build.sh release; fi
+if ((build)); then
+  t0=$SECONDS
+  running "build (scripts/build.sh release)"
+  if CDBENCH_BUILD_TARGETS=cdbench bash scripts/build.sh release >"$logs/build.log" 2>&1; then
+    if grep -q 'no work to do' "$logs/build.log"; then
+      say "build: build/cdbench is up to date ($((SECONDS - t0)) s)"
+    else
+      say "build: build/cdbench (release), $(grep -c '^\[[0-9]*/[0-9]*\]' "$logs/build.log") build steps, $((SECONDS - t0)) s"
+    fi
+  else
+    say "build FAILED (CDBENCH_BUILD_TARGETS=cdbench scripts/build.sh release)"
+    # Its last lines but Ninja's progress lines ("[12/40] Building ..."): the errors.
+    say "  the last lines of $logs/build.log (less its progress lines):"
+    grep -v '^\[[0-9]*/[0-9]*\] ' "$logs/build.log" | tail -n 30 | sed 's/^/    /' >&2 || true
+    exit 1
+  fi
+fi
 
-out=${out:-results/$profile}
-mkdir -p "$out"
 if ((fresh)); then
   find "$out" -type d \( -name cells -o -name recordings \) -prune -exec rm -rf {} +
   find "$out" -type f -name run.json -delete
@@ -100,25 +149,61 @@ fi
 start=$(date +%s)
 failed=()
 
-# run BACKEND ENV [cdbench run options...]: the environment's cells in $jobs shares at once.
+# run BACKEND ENV STEP [cdbench run options...]: the environment's cells in $jobs shares at once,
+# each share's output into its log; one line says how it went (STEP: e.g. "1/3", or "").
 run() {
-  local backend=$1 env=$2
-  shift 2
-  local dir=$out/$backend/$env pids=() status=0 shares=$jobs
+  local backend=$1 env=$2 step=$3
+  shift 3
+  local dir=$out/$backend/$env pids=() bad=() status=0 shares=$jobs t0=$SECONDS i
+  local what="$env${step:+ $step} on $backend ($profile)" log=$logs/$backend-$env
   if ((!jobs_given)) && build/cdbench backends | grep -q "^$backend .*needs EGL"; then shares=1; fi
-  echo "== $env on $backend ($profile, $shares at once)" >&2
+  rm -f "$log".*.log
+  running "$what: $shares share$( ((shares == 1)) || echo s)"
   for ((i = 1; i <= shares; ++i)); do
     build/cdbench run "configs/$env.yaml" --visibility "$backend" --threads 1 --quiet \
-      --shard "$i/$shares" --out "$dir" "$@" &
+      --shard "$i/$shares" --out "$dir" "$@" >"$log.share-$i-of-$shares.log" 2>&1 &
     pids+=($!)
   done
-  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+  for ((i = 1; i <= shares; ++i)); do wait "${pids[i - 1]}" || bad+=("$i"); done
+  ((${#bad[@]} == 0)) || status=1
   # The shares wrote their cells into one folder; the last to finish wrote frames.csv and meta.json.
   # Should two have finished at once, merging again writes them from every cell.
-  ((status == 0)) && [[ -s $dir/frames.csv ]] || build/cdbench merge --out "$dir" "$dir" >/dev/null 2>&1 || status=1
+  if ((status != 0)) || [[ ! -s $dir/frames.csv ]]; then
+    build/cdbench merge --out "$dir" "$dir" >"$log.merge.log" 2>&1 || status=1
+  fi
   # One environment failing (e.g. env2 without the dragon on the asset path) does not lose the
   # others: the report says which is missing, and the script exits non-zero at the end.
-  ((status == 0)) || failed+=("$backend/$env")
+  if ((status != 0)); then
+    failed+=("$backend/$env")
+    if ((${#bad[@]})); then
+      local which
+      which=$(printf '%s, ' "${bad[@]}")
+      say "$what FAILED after $((SECONDS - t0)) s: share${bad[1]:+s} ${which%, } of $shares failed"
+      show_log "$log.share-${bad[0]}-of-$shares.log"
+    else
+      say "$what FAILED after $((SECONDS - t0)) s: cdbench merge failed"
+      show_log "$log.merge.log"
+    fi
+    return 0
+  fi
+  local counts measured resumed totals cells
+  counts=$(cell_counts "$log".share-*.log)
+  read -r measured resumed <<<"${counts:-- -}"
+  if [[ $measured == - ]]; then
+    cells="done"
+  elif ((resumed == 0)); then
+    cells="$measured cells measured"
+  elif ((measured == 0)); then
+    cells="$resumed cells resumed (none measured)"
+  else
+    cells="$((measured + resumed)) cells ($measured measured, $resumed resumed)"
+  fi
+  # Frames and false negatives of the whole run (the merged frames.csv).
+  totals=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "false_negatives") c = i; next }
+    { n++; if (c) fn += $c } END { printf "%d frames, %d false negatives", n, fn }' "$dir/frames.csv")
+  say "$what: $cells in $shares share$( ((shares == 1)) || echo s), $totals, $((SECONDS - t0)) s"
+  # A note a share made (cells kept from a run of another build): once, as cdbench said it.
+  grep -h -m1 '^run: note:' "$log".share-*.log 2>/dev/null | head -n 1 | sed 's/^/reproduce:   /' >&2 || true
 }
 
 # snapshot ENV: the picture at the head of the environment's report section, from the poses the run
@@ -126,7 +211,8 @@ run() {
 # fewest objects that has a colliding pair at a measured frame (of the fewest objects when none
 # has), at its measured frame with the most colliding pairs (the earliest of equals),
 # objects coloured by the sets of ours on the run's backend at 800 pixels. Seconds per environment;
-# a failure costs the report its picture, not the run.
+# a failure costs the report its picture, not the run. Adds "ENV frame F" to snapped or says why not.
+snapped=()
 snapshot() {
   local env=$1 dir=$out/$primary/$1 pick objects frame recording
   [[ -s $dir/frames.csv ]] || return 0
@@ -145,26 +231,39 @@ snapshot() {
   recording=$dir/recordings/o-_r0.poses  # an environment without a swept object count
   [[ -f $recording ]] || recording=$dir/recordings/o${objects}_r0.poses
   if [[ ! -f $recording ]]; then
-    echo "reproduce: $env: no recording of its first simulation in $dir/recordings; no snapshot" >&2
+    say "$env: no recording of its first simulation in $dir/recordings; no snapshot"
     return 0
   fi
-  build/cdbench snapshot "configs/$env.yaml" --replay "$recording" --frame "$frame" --strategy ours \
-    --visibility "$primary" --resolution 800 --out "$dir/snapshot.png" ||
-    echo "reproduce: $env: no snapshot (see above); the report goes on without it" >&2
+  if build/cdbench snapshot "configs/$env.yaml" --replay "$recording" --frame "$frame" --strategy ours \
+    --visibility "$primary" --resolution 800 --out "$dir/snapshot.png" >"$logs/snapshot-$env.log" 2>&1; then
+    snapped+=("$env frame $frame")
+  else
+    say "$env: no snapshot; the report goes on without it"
+    show_log "$logs/snapshot-$env.log"
+  fi
 }
 
-for env in ${envs//,/ }; do
+IFS=, read -ra listed <<<"$envs"
+for env in "${listed[@]}"; do
   [[ -f configs/$env.yaml ]] || { echo "reproduce: no configs/$env.yaml" >&2; exit 2; }
-  run "$primary" "$env" "${common[@]}"
 done
-for env in ${envs//,/ }; do snapshot "$env"; done
+for k in "${!listed[@]}"; do
+  run "$primary" "${listed[k]}" "$((k + 1))/${#listed[@]}" "${common[@]}"
+done
+t0=$SECONDS
+running "snapshots"
+for env in "${listed[@]}"; do snapshot "$env"; done
+if ((${#snapped[@]})); then
+  shown=$(printf '%s, ' "${snapped[@]}")
+  say "snapshots (ours on $primary at 800 px, recorded poses): ${shown%, }, $((SECONDS - t0)) s"
+fi
 # chosen ENV: whether --env names ENV.
 chosen() { [[ ,$envs, == *,$1,* ]]; }
 if [[ $profile == standard ]] && { chosen env1 || chosen env3; }; then
   for backend in gl-flags gl-queries; do
     [[ $backend == "$primary" ]] && continue
     if ! build/cdbench info 2>/dev/null | grep -q "^  $backend  *works"; then
-      echo "reproduce: $backend does not start here; its subset is left out" >&2
+      say "$backend does not start here; its subset is left out"
       continue
     fi
     # The configs' culling strategies only: the reference rows draw nothing, and the report takes
@@ -172,11 +271,11 @@ if [[ $profile == standard ]] && { chosen env1 || chosen env3; }; then
     culling=(--strategies cullide,cullide_bvh,quick_cullide,ours)
     # Only the environments asked for (--env): a rerun of env2 alone runs no subset.
     if [[ $backend == gl-flags ]]; then
-      chosen env1 && run gl-flags env1 --repeats 2 --frame-stride 15 --resolutions 500 "${culling[@]}"
-      chosen env3 && run gl-flags env3 --repeats 2 --frame-stride 15 --objects 50,125 "${culling[@]}"
+      chosen env1 && run gl-flags env1 "" --repeats 2 --frame-stride 15 --resolutions 500 "${culling[@]}"
+      chosen env3 && run gl-flags env3 "" --repeats 2 --frame-stride 15 --objects 50,125 "${culling[@]}"
     else
-      chosen env1 && run gl-queries env1 --repeats 2 --frame-stride 30 --resolutions 500 "${culling[@]}"
-      chosen env3 && run gl-queries env3 --repeats 2 --frame-stride 30 --objects 50,100 "${culling[@]}"
+      chosen env1 && run gl-queries env1 "" --repeats 2 --frame-stride 30 --resolutions 500 "${culling[@]}"
+      chosen env3 && run gl-queries env3 "" --repeats 2 --frame-stride 30 --objects 50,100 "${culling[@]}"
     fi
   done
 fi
@@ -187,13 +286,28 @@ if [[ $profile != full ]]; then
   ((jobs_given)) && precision+=(--jobs "$jobs")
   bash scripts/precision.sh "$profile" "$out" "${precision[@]}" || failed+=(precision)
 fi
+reported=0
 if ((report)); then
-  /usr/bin/python3 scripts/report.py "$out" --primary "$primary"
-  echo "reproduce: $profile done in $(( $(date +%s) - start )) s: $out/REPORT.md" >&2
+  running "report (scripts/report.py $out)"
+  if /usr/bin/python3 scripts/report.py "$out" --primary "$primary" >"$logs/report.log" 2>&1; then
+    reported=1
+  else
+    failed+=(report)
+    say "report FAILED (scripts/report.py $out --primary $primary)"
+    show_log "$logs/report.log"
+  fi
+fi
+elapsed=$(($(date +%s) - start))
+if ((reported)); then
+  say "$profile done in $elapsed s: $out/REPORT.md"
+  # Its headline lines, read back from the report (correctness, speedups, ...).
+  /usr/bin/python3 scripts/report/headlines.py "$out/REPORT.md" | sed 's/^/  /' || true
+elif ((report)); then
+  say "$profile runs done in $elapsed s: $out; no report (see above)"
 else
-  echo "reproduce: $profile runs done in $(( $(date +%s) - start )) s: $out" >&2
+  say "$profile runs done in $elapsed s: $out (report: scripts/report.py $out --primary $primary)"
 fi
 if ((${#failed[@]})); then
-  echo "reproduce: failed: ${failed[*]} (see the messages above; rerun to resume)" >&2
+  say "failed: ${failed[*]} (see the messages above; rerun to resume)"
   exit 1
 fi
