@@ -49,32 +49,26 @@ class Cli:
     subcommands: dict = field(default_factory=dict)  # name -> set of options
 
 
-def help_options(text):
-    """The option names a CLI11 --help lists: the first column of its 'Options:' entries."""
-    options, in_options = set(), False
+def help_section(text, titles):
+    """The first column of each entry of a CLI11 --help section ("Options:", "Subcommands:")."""
+    in_section = False
     for line in text.splitlines():
         if re.match(r"^\S.*:\s*$", line):
-            in_options = line.strip().rstrip(":") in ("Options", "OPTIONS")
+            in_section = line.strip().rstrip(":").lower() in titles
             continue
-        m = re.match(r"^ {2}(-\S+)", line)
-        if in_options and m:
-            for name in m.group(1).split(","):
-                name = name.split("=")[0]
-                if name.startswith("-"):
-                    options.add(name)
-    return options
+        m = re.match(r"^ {2}(\S+)", line)
+        if in_section and m:
+            yield m.group(1)
+
+
+def help_options(text):
+    """The option names a --help lists: "-h,--help" gives -h and --help, "--out=DIR" --out."""
+    return {name.split("=")[0] for entry in help_section(text, ("options",))
+            for name in entry.split(",") if name.startswith("-")}
 
 
 def help_subcommands(text):
-    names, in_subcommands = [], False
-    for line in text.splitlines():
-        if re.match(r"^\S.*:\s*$", line):
-            in_subcommands = line.strip().rstrip(":") in ("Subcommands", "SUBCOMMANDS")
-            continue
-        m = re.match(r"^ {2}([a-z][\w-]*)\b", line)
-        if in_subcommands and m:
-            names.append(m.group(1))
-    return names
+    return [entry for entry in help_section(text, ("subcommands",)) if re.fullmatch(r"[a-z][\w-]*", entry)]
 
 
 def read_cli(binary):

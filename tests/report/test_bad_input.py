@@ -7,7 +7,7 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from test_report import FRAME_HEADER, env1_rows, env3_rows, run_report, run_report_script, write_run
+from test_report import FRAME_HEADER, assert_refused_in_one_line, env1_rows, env3_rows, run_report, run_report_script, write_run
 
 BEFORE = "# a report written before\n"
 
@@ -31,15 +31,10 @@ class RefusedBeforeWriting(unittest.TestCase):
 
     def assert_refused(self, result, *fragments):
         """Exit 2, one line on stderr holding every fragment, nothing written."""
-        self.assertEqual(result.returncode, 2, result.stderr)
-        lines = result.stderr.strip().splitlines()
-        self.assertEqual(len(lines), 1, result.stderr)
-        for fragment in fragments:
-            self.assertIn(fragment, lines[0])
-        self.assertFalse((self.dir / "REPORT.md").exists())
+        line = assert_refused_in_one_line(self, result, self.dir, *fragments)
         written = [p for p in self.dir.rglob("*") if p.suffix == ".png" or p.name.startswith("comparison.")]
         self.assertEqual(written, [])
-        return lines[0]
+        return line
 
     def test_empty_folder(self):
         result = run_report_script(self.dir)

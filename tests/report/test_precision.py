@@ -11,7 +11,7 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from test_report import FRAME_HEADER, PACK, env1_rows, run_report, write_run
+from test_report import FRAME_HEADER, PACK, assert_refused_in_one_line, env1_rows, run_report, write_run
 
 ROOT = Path(__file__).resolve().parents[2]
 FIXTURE = Path(__file__).resolve().parent / "fixtures" / "precision"
@@ -83,12 +83,7 @@ class InFreshResultDir(unittest.TestCase):
         shutil.rmtree(self.tmp, ignore_errors=True)
 
     def assert_one_line_failure(self, result, *fragments):
-        self.assertEqual(result.returncode, 2, result.stderr)
-        lines = result.stderr.strip().splitlines()
-        self.assertEqual(len(lines), 1, result.stderr)
-        for fragment in fragments:
-            self.assertIn(fragment, lines[0])
-        self.assertFalse((self.dir / "REPORT.md").exists())
+        assert_refused_in_one_line(self, result, self.dir, *fragments)
 
 
 class PrecisionOnSyntheticRuns(unittest.TestCase):

@@ -88,6 +88,18 @@ def run_report_script(result_dir, *options):
                           capture_output=True, text=True, timeout=300)
 
 
+def assert_refused_in_one_line(test, result, result_dir, *fragments):
+    """The report refused its input: exit 2, one line on stderr holding every fragment, no REPORT.md
+    in result_dir. Returns the line."""
+    test.assertEqual(result.returncode, 2, result.stderr)
+    lines = result.stderr.strip().splitlines()
+    test.assertEqual(len(lines), 1, result.stderr)
+    for fragment in fragments:
+        test.assertIn(fragment, lines[0])
+    test.assertFalse((result_dir / "REPORT.md").exists())
+    return lines[0]
+
+
 def run_report(result_dir, *options):
     """The report's main (what scripts/report.py calls) in this process, its output captured as a process'
     would be: the tests import matplotlib once, not once a run (0.6 s each). Python warnings are shown
