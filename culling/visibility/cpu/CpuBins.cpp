@@ -20,48 +20,80 @@ std::uint32_t itemCount(const CpuCommand& c) {
 }
 
 // Screen extent of a box (centre and half extents) in the frame of `toScreen`: exact up to
-// rounding.
+// rounding. (Plain arithmetic on three coordinates: binning bounds every part of every chunk.)
 struct ScreenExtent {
-  Eigen::Vector3d lo, hi;
+  double lo[3], hi[3];
+  [[nodiscard]] bool finite() const {
+    // (Finite values minus themselves are 0; infinities and NaN give NaN.)
+    double sum = 0.0;
+    for (int i = 0; i < 3; ++i) sum += (lo[i] - lo[i]) + (hi[i] - hi[i]);
+    return sum == 0.0;
+  }
 };
-ScreenExtent extentOf(const ScreenMatrix& toScreen, const Eigen::Vector3d& centre,
-                      const Eigen::Vector3d& half) {
-  const Eigen::Vector3d mid = toScreen.leftCols<3>() * centre + toScreen.col(3);
-  const Eigen::Vector3d reach = toScreen.leftCols<3>().cwiseAbs() * half;
-  return {mid - reach, mid + reach};
+ScreenExtent extentOf(const ScreenMatrix& m, const double (&centre)[3], const double (&half)[3]) {
+  ScreenExtent e;
+  for (int i = 0; i < 3; ++i) {
+    const double mid = m(i, 0) * centre[0] + m(i, 1) * centre[1] + m(i, 2) * centre[2] + m(i, 3);
+    const double reach = std::abs(m(i, 0)) * half[0] + std::abs(m(i, 1)) * half[1] +
+                         std::abs(m(i, 2)) * half[2];
+    e.lo[i] = mid - reach, e.hi[i] = mid + reach;
+  }
+  return e;
+}
+ScreenExtent extentOf(const ScreenMatrix& m, const Eigen::AlignedBox3f& box) {
+  double centre[3], half[3];
+  for (int i = 0; i < 3; ++i) {
+    const double lo = box.min()[i], hi = box.max()[i];
+    centre[i] = (lo + hi) * 0.5, half[i] = (hi - lo) * 0.5;
+  }
+  return extentOf(m, centre, half);
 }
 
 // The pixels a triangle within the extent can cover: a pixel more on each side than the set-up
 // can reach (its margin, the conservative rule's extra pixel), so that every triangle's pixel box
 // (setupBounds) lies inside. Empty when off-screen; the whole frame when not finite (the set-up
 // draws no such triangle).
-PixelRect pixelsOf(const ScreenExtent& e, const RasterPass& pass) {
-  const double last = pass.resolution - 1;
-  if (!e.lo.allFinite() || !e.hi.allFinite())
-    return {0, 0, static_cast<int>(last), static_cast<int>(last)};
+PixelRect pixelsOf(const ScreenExtent& e, bool finite, const RasterPass& pass) {
+  const int last = pass.resolution - 1;
+  if (!finite) return {0, 0, last, last};
   const double m = pass.marginPx + 1.0;
-  const double x0 = std::max(0.0, std::floor(e.lo.x() - m) - 1.0);
-  const double y0 = std::max(0.0, std::floor(e.lo.y() - m) - 1.0);
-  const double x1 = std::min(last, std::ceil(e.hi.x() + m));
-  const double y1 = std::min(last, std::ceil(e.hi.y() + m));
+  // floor and ceil of values clamped to [-2, last + 2] first, by an integer conversion (the
+  // build's baseline instruction set has no rounding instruction: std::floor is a call). Both are
+  // monotone and the clamp's ends integers, so every rectangle, and every empty one, is the same
+  // as unclamped.
+  const double lowEnd = -2.0, highEnd = last + 2.0;
+  const auto floorOf = [&](double v) {
+    v = std::clamp(v, lowEnd, highEnd);
+    const auto t = static_cast<int>(v);  // toward zero
+    return t - (v < t ? 1 : 0);
+  };
+  const auto ceilOf = [&](double v) {
+    v = std::clamp(v, lowEnd, highEnd);
+    const auto t = static_cast<int>(v);
+    return t + (v > t ? 1 : 0);
+  };
+  const int x0 = std::max(0, floorOf(e.lo[0] - m) - 1);
+  const int y0 = std::max(0, floorOf(e.lo[1] - m) - 1);
+  const int x1 = std::min(last, ceilOf(e.hi[0] + m));
+  const int y1 = std::min(last, ceilOf(e.hi[1] + m));
   if (x1 < x0 || y1 < y0) return {};
-  return {static_cast<int>(x0), static_cast<int>(y0), static_cast<int>(x1), static_cast<int>(y1)};
+  return {x0, y0, x1, y1};
 }
 
 // An item's rectangle and key range: keys widened far beyond the rounding of the transforms, and
 // moved by the pass' offsets as the set-up moves them.
-void boundItem(const ScreenExtent& e, const RasterPass& pass, CpuItem& item) {
-  item.rect = pixelsOf(e, pass);
-  if (!e.lo.allFinite() || !e.hi.allFinite()) {
+void boundItem(const ScreenExtent& e, bool finite, const RasterPass& pass, CpuItem& item) {
+  item.rect = pixelsOf(e, finite, pass);
+  if (!finite) {
     item.kLo = pass.keyLo, item.kHi = pass.keyHi;
     return;
   }
-  const double slack = 1e-9 * (1.0 + std::abs(e.lo.z()) + std::abs(e.hi.z()));
+  const double slack = 1e-9 * (1.0 + std::abs(e.lo[2]) + std::abs(e.hi[2]));
   const double shift = pass.conservative ? (item.test ? pass.depthEpsilon : -pass.depthEpsilon)
                                          : (item.test ? pass.rawTestOffset : 0.0);
   const auto clampToPass = [&](float v) { return std::clamp(v, pass.keyLo, pass.keyHi); };
-  item.kLo = clampToPass(raster_detail::roundDown(e.lo.z() + shift - slack));
-  item.kHi = clampToPass(raster_detail::roundUp(e.hi.z() + shift + slack));
+  item.kLo = clampToPass(raster_detail::roundDown(e.lo[2] + shift - slack));
+  item.kHi = clampToPass(raster_detail::roundUp(e.hi[2] + shift + slack));
 }
 
 // A chunk item's bounds from the boxes of its parts (empty boxes: parts it does not have): each
@@ -69,28 +101,27 @@ void boundItem(const ScreenExtent& e, const RasterPass& pass, CpuItem& item) {
 // its part's extent; tighter than the extent of the parts' union box).
 void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3f> parts,
                 const RasterPass& pass, CpuItem& item, CpuItemParts& rects) {
-  ScreenExtent all{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
-                   Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  ScreenExtent all{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
   bool any = false, finite = true;
   for (std::size_t p = 0; p < rects.size(); ++p) {
     if (parts[p].isEmpty()) {
       rects[p] = {};
       continue;
     }
-    const Eigen::AlignedBox3d box = parts[p].cast<double>();
-    const ScreenExtent e = extentOf(toScreen, box.center(), box.sizes() * 0.5);
-    rects[p] = pixelsOf(e, pass);
-    all.lo = all.lo.cwiseMin(e.lo).eval();
-    all.hi = all.hi.cwiseMax(e.hi).eval();
-    finite = finite && e.lo.allFinite() && e.hi.allFinite();
+    const ScreenExtent e = extentOf(toScreen, parts[p]);
+    const bool partFinite = e.finite();
+    rects[p] = pixelsOf(e, partFinite, pass);
+    for (int i = 0; i < 3; ++i)
+      all.lo[i] = std::min(all.lo[i], e.lo[i]), all.hi[i] = std::max(all.hi[i], e.hi[i]);
+    finite = finite && partFinite;
     any = true;
   }
   if (!any) {
     item.rect = {};
     return;
   }
-  if (!finite) all.lo.x() = std::numeric_limits<double>::quiet_NaN();  // boundItem: whole frame
-  boundItem(all, pass, item);
+  boundItem(all, finite, pass, item);
 }
 
 // Items [n0, n1) of command `ci`, at items[n0 ..]; a chunk item's parts at
@@ -110,7 +141,8 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       CpuItem& item = items[b] = base;
       item.first = c.first + b, item.count = 1, item.answer = answerOf(b);
       const ScreenMatrix cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
-      boundItem(extentOf(cube, Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()), raster, item);
+      const ScreenExtent e = extentOf(cube, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
+      boundItem(e, e.finite(), raster, item);
     }
     return;
   }
@@ -131,9 +163,17 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       parts[p] = {};
       if (c.source == CpuCommand::Source::Range && p0 < p1)
         parts[p] = mesh.parts[(item.first + p0) / kPartTriangles];
-      else if (c.source == CpuCommand::Source::Listed)
-        for (std::uint32_t i = p0; i < p1; ++i)
-          parts[p].extend(mesh.triangles[recording.listed[item.first + i]]);
+      else if (c.source == CpuCommand::Source::Listed && p0 < p1) {
+        // (Positions ascending: a full part listing one part of the mesh is that part, whose box
+        // binning has at hand; the whole-mesh lists of CULLIDE's triangle level are all such.)
+        const std::uint32_t* listed = recording.listed.data() + item.first;
+        if (p1 - p0 == kPartTriangles &&
+            listed[p0] / kPartTriangles == listed[p1 - 1] / kPartTriangles) {
+          parts[p] = mesh.parts[listed[p0] / kPartTriangles];
+          continue;
+        }
+        for (std::uint32_t i = p0; i < p1; ++i) parts[p].extend(mesh.triangles[listed[i]]);
+      }
     }
     boundChunk(c.toScreen, parts, raster, item, bins.parts[item.parts]);
   }

@@ -22,6 +22,17 @@ void putInDrawOrder(CpuRecording& recording, std::span<const CpuMeshBounds> boun
     std::uint32_t* listed = recording.listed.data() + c.first;
     std::uint32_t* offset = recording.listedOffset.data() + c.first;
     const std::size_t triangles = position.size();
+    if (c.count == triangles && [&] {
+          for (std::uint32_t k = 0; k < c.count; ++k)
+            if (listed[k] != k) return false;
+          return true;
+        }()) {
+      // Every triangle of the mesh in its own order (a whole object's list): position p is
+      // triangle order[p], issued at offset order[p].
+      const std::vector<std::uint32_t>& order = bounds[c.mesh].order;
+      for (std::uint32_t k = 0; k < c.count; ++k) listed[k] = k, offset[k] = order[k];
+      continue;
+    }
     if (32 * std::size_t{c.count} >= triangles) {
       // Not too sparse: a counting sort over the mesh's positions.
       std::vector<std::uint32_t>& start = scratch.start;
