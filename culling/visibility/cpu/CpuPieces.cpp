@@ -69,10 +69,12 @@ void chunkPieces(const CpuRun& run, const Mesh& mesh, const CpuMeshBounds& bound
   std::uint32_t chunk = ~std::uint32_t{0};
   const CpuScreenVertex* vertices = nullptr;
   // A pixel box lies within [minX - margin - 1, maxX + margin] (and the same in y), in either
-  // rasterisation mode; a little more is left for rounding.
-  const double reach = marginPx + 2.0;
-  const double wx0 = window.x0 - reach, wx1 = window.x1 + reach;
-  const double wy0 = window.y0 - reach, wy1 = window.y1 + reach;
+  // rasterisation mode (setupBounds: from ceil(minX - margin) - 1 to floor(maxX + margin); raw
+  // mode's centre rule lies within), so it meets the window only if maxX >= x0 - margin and
+  // minX <= x1 + margin + 1; half a pixel more is left for rounding.
+  const double below = marginPx + 0.5, above = marginPx + 1.5;
+  const double wx0 = window.x0 - below, wx1 = window.x1 + above;
+  const double wy0 = window.y0 - below, wy1 = window.y1 + above;
   const CpuItemParts& partRects = run.bins.parts[item.parts];
   std::size_t kept = 0;
   for (std::uint32_t part = 0; part < item.count; part += kPartTriangles) {

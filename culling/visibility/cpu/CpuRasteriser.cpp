@@ -493,14 +493,143 @@ HWY_INLINE bool drawSetUp(CpuDepthBuffer& buffer, const RasterPass& pass, const 
   return drawBlocks<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
 }
 
+// Step 1 of the set-up (setupBounds) for several pieces at a time, one per lane of doubles: the
+// same operations in the same order on the same values (IEEE arithmetic, ceil and floor are exact,
+// min and max select as std::min and std::max do, float rounding and its nudges by the bits as
+// roundUp), so every box and key bound is bit for bit setupBounds'. Conservative passes only (raw
+// mode's zero-area test is left to setupBounds).
+using DD = hn::CappedTag<double, 8>;
+constexpr std::size_t kMostLanes = 8;
+struct BatchBounds {
+  std::int32_t x0[kMostLanes], y0[kMostLanes], x1[kMostLanes], y1[kMostLanes];
+  float zLo[kMostLanes], zHi[kMostLanes];
+  std::uint8_t ok[kMostLanes];
+};
+HWY_INLINE hn::Vec<DD> lesserOf(hn::Vec<DD> a, hn::Vec<DD> b) {  // std::min(a, b)
+  return hn::IfThenElse(hn::Lt(b, a), b, a);
+}
+HWY_INLINE hn::Vec<DD> greaterOf(hn::Vec<DD> a, hn::Vec<DD> b) {  // std::max(a, b)
+  return hn::IfThenElse(hn::Lt(a, b), b, a);
+}
+// raster_detail::roundUp, lane by lane: the float's bits, and the next float's, as exact doubles.
+HWY_INLINE hn::Vec<hn::Rebind<float, DD>> roundUpLanes(hn::Vec<DD> v) {
+  const DD dd;
+  const hn::Rebind<float, DD> df;
+  const hn::Rebind<std::int32_t, DD> di;
+  const auto f = hn::DemoteTo(df, v);
+  const auto below = hn::Lt(hn::PromoteTo(dd, f), v);
+  const auto bits = hn::PromoteTo(dd, hn::BitCast(di, f));
+  const auto zero = hn::Or(hn::Eq(bits, hn::Zero(dd)), hn::Eq(bits, hn::Set(dd, -2147483648.0)));
+  const auto step = hn::IfThenElse(hn::Lt(bits, hn::Zero(dd)), hn::Set(dd, -1.0), hn::Set(dd, 1.0));
+  const auto up = hn::IfThenElse(zero, hn::Set(dd, 1.0), hn::Add(bits, step));
+  return hn::BitCast(df, hn::DemoteTo(di, hn::IfThenElse(below, up, bits)));
+}
+template <class V>
+HWY_INLINE V clampLanes(V v, V lo, V hi) {  // std::clamp(v, lo, hi)
+  return hn::IfThenElse(hn::Lt(v, lo), lo, hn::IfThenElse(hn::Lt(hi, v), hi, v));
+}
+// Pieces [first, first + lanes) of `pieces` (`count` in all; lanes past the last repeat it).
+template <class Piece>
+HWY_INLINE void boundsBatch(const Piece* pieces, std::size_t first, std::size_t count,
+                            const RasterPass& pass, RasterRole role, BatchBounds& out) {
+  const DD dd;
+  const hn::Rebind<float, DD> df;
+  const hn::Rebind<std::int32_t, DD> di;
+  const hn::RebindToSigned<DD> di64;
+  constexpr std::int64_t kStride = sizeof(Piece) / sizeof(double);
+  static_assert(sizeof(Piece) == 3 * Piece::kVertices * sizeof(double));
+  const auto lane = hn::Iota(di64, 0);
+  const auto lastLane = hn::Set(di64, static_cast<std::int64_t>(count - 1 - first));
+  const auto index = hn::Mul(hn::Min(lane, lastLane), hn::Set(di64, kStride));
+  const double* base = &pieces[first].x[0];
+  hn::Vec<DD> minX, maxX, minY, maxY, kMin, kMax;
+  auto finite = hn::Eq(hn::Zero(dd), hn::Zero(dd));
+  for (int v = 0; v < Piece::kVertices; ++v) {
+    const auto x = hn::GatherIndex(dd, base + v, index);
+    const auto y = hn::GatherIndex(dd, base + Piece::kVertices + v, index);
+    const auto k = hn::GatherIndex(dd, base + 2 * Piece::kVertices + v, index);
+    finite = hn::And(finite, hn::And(hn::IsFinite(x), hn::And(hn::IsFinite(y), hn::IsFinite(k))));
+    if (v == 0) {
+      minX = maxX = x, minY = maxY = y, kMin = kMax = k;
+    } else {
+      minX = lesserOf(minX, x), maxX = greaterOf(maxX, x);
+      minY = lesserOf(minY, y), maxY = greaterOf(maxY, y);
+      kMin = lesserOf(kMin, k), kMax = greaterOf(kMax, k);
+    }
+  }
+  const double m = pass.marginPx;
+  const auto one = hn::Set(dd, 1.0);
+  auto bx0 = hn::Sub(hn::Ceil(hn::Add(minX, hn::Set(dd, -m))), one);
+  auto by0 = hn::Sub(hn::Ceil(hn::Add(minY, hn::Set(dd, -m))), one);
+  auto bx1 = hn::Floor(hn::Add(maxX, hn::Set(dd, m)));
+  auto by1 = hn::Floor(hn::Add(maxY, hn::Set(dd, m)));
+  const auto last = hn::Set(dd, static_cast<double>(pass.resolution - 1));
+  bx0 = greaterOf(bx0, hn::Zero(dd)), by0 = greaterOf(by0, hn::Zero(dd));
+  bx1 = lesserOf(bx1, last), by1 = lesserOf(by1, last);
+  const auto ok = hn::And(finite, hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1)));
+  hn::StoreU(hn::DemoteTo(di, bx0), di, out.x0);
+  hn::StoreU(hn::DemoteTo(di, by0), di, out.y0);
+  hn::StoreU(hn::DemoteTo(di, bx1), di, out.x1);
+  hn::StoreU(hn::DemoteTo(di, by1), di, out.y1);
+  const bool test = role == RasterRole::Test;
+  const auto shift = hn::Set(dd, test ? pass.depthEpsilon : -pass.depthEpsilon);
+  const auto keyLo = hn::Set(df, pass.keyLo), keyHi = hn::Set(df, pass.keyHi);
+  if (test) {
+    hn::StoreU(clampLanes(roundUpLanes(hn::Add(kMin, shift)), keyLo, keyHi), df, out.zLo);
+    hn::StoreU(clampLanes(roundUpLanes(hn::Add(kMax, shift)), keyLo, keyHi), df, out.zHi);
+  } else {  // roundDown(v) = -roundUp(-v)
+    hn::StoreU(clampLanes(hn::Neg(roundUpLanes(hn::Neg(hn::Add(kMin, shift)))), keyLo, keyHi), df,
+               out.zLo);
+    hn::StoreU(clampLanes(hn::Neg(roundUpLanes(hn::Neg(hn::Add(kMax, shift)))), keyLo, keyHi), df,
+               out.zHi);
+  }
+  const hn::Rebind<std::uint8_t, DD> d8;
+  hn::StoreU(hn::DemoteTo(d8, hn::DemoteTo(di, hn::IfThenElseZero(ok, one))), d8, out.ok);
+}
+
+// setupBounds of pieces[0 .. count) one after another, set up a batch of lanes at a time for the
+// triangles of a chunk in a conservative pass: next(i, r) sets up piece i (in order, each once)
+// into r. (A box's few faces, and a few triangles, are set up one by one: a batch's gathers cost
+// more than the set-ups they would share.)
+template <class Piece>
+class BoundsInBatches {
+ public:
+  BoundsInBatches(const Piece* pieces, std::size_t count, const RasterPass& pass, RasterRole role)
+      : pieces_(pieces), count_(count), pass_(pass), role_(role),
+        batched_(pass.conservative && Piece::kVertices == 3 && count >= kLeastBatched) {}
+  HWY_INLINE bool next(std::size_t i, TriangleRaster& r) {
+    if (!batched_) return setupBounds(pieces_[i], pass_, role_, r);
+    if (i >= end_) {
+      begin_ = i;
+      end_ = std::min(count_, i + hn::Lanes(DD()));
+      boundsBatch(pieces_, i, count_, pass_, role_, batch_);
+    }
+    const std::size_t at = i - begin_;
+    r.x0 = batch_.x0[at], r.y0 = batch_.y0[at], r.x1 = batch_.x1[at], r.y1 = batch_.y1[at];
+    r.zLo = batch_.zLo[at], r.zHi = batch_.zHi[at];
+    return batch_.ok[at] != 0;
+  }
+
+ private:
+  const Piece* pieces_;
+  std::size_t count_;
+  const RasterPass& pass_;
+  RasterRole role_;
+  static constexpr std::size_t kLeastBatched = 8;
+  bool batched_;
+  std::size_t begin_ = 0, end_ = 0;
+  BatchBounds batch_;
+};
+
 // Pieces prepared to be written later, block by block: those with a pixel in the window.
 template <class Piece>
 std::size_t prepare(const CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
                     std::size_t count, PreparedWrite<Piece>* out) {
   std::size_t n = 0;
+  BoundsInBatches<Piece> bounds(pieces, count, pass, RasterRole::Write);
   for (std::size_t i = 0; i < count; ++i) {
     PreparedWrite<Piece>& w = out[n];
-    if (!setupBounds(pieces[i], pass, RasterRole::Write, w.raster)) continue;
+    if (!bounds.next(i, w.raster)) continue;
     const BlockRange blocks = blocksInWindow(buffer, w.raster);
     if (blocks.x0 > blocks.x1 || blocks.y0 > blocks.y1) continue;
     w.blocks = 0;
@@ -548,11 +677,12 @@ template <bool kOthers, class Piece>
 std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
                               std::size_t count, const Writer& writer, RasterWork& work,
                               PendingBlocks* pending, std::uint8_t* each) {
+  BoundsInBatches<Piece> bounds(pieces, count, pass, RasterRole::Test);
   if (each != nullptr || pending == nullptr) {
     for (std::size_t i = 0; i < count; ++i) {
       TriangleRaster r;
       bool coverage = false;
-      if ((each == nullptr || each[i]) && setupBounds(pieces[i], pass, RasterRole::Test, r) &&
+      if ((each == nullptr || each[i]) && bounds.next(i, r) &&
           (drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], r, coverage, kAllBlocks, writer, work,
                                      nullptr) ||
            (pending && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], r, coverage,
@@ -568,7 +698,7 @@ std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, co
   auto* kept = reinterpret_cast<TriangleRaster*>(storage);
   bool setUp[kMostTestPieces], coverage[kMostTestPieces];
   for (std::size_t i = 0; i < count; ++i) {
-    setUp[i] = setupBounds(pieces[i], pass, RasterRole::Test, *std::construct_at(kept + i));
+    setUp[i] = bounds.next(i, *std::construct_at(kept + i));
     coverage[i] = false;
     if (setUp[i] && drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], kept[i], coverage[i],
                                               kAllBlocks, writer, work, nullptr))
