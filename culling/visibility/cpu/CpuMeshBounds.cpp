@@ -112,6 +112,8 @@ std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
       }
     }
     b.chunkVertexStart.push_back(static_cast<std::uint32_t>(b.chunkVertices.size()));
+    b.chunkPositions.reserve(b.chunkVertices.size());
+    for (const std::uint32_t v : b.chunkVertices) b.chunkPositions.push_back(m.vertices[v]);
     for (std::size_t first = 0; first < n; first += kPartTriangles) {
       Eigen::AlignedBox3f part;
       const std::size_t end = std::min<std::size_t>(first + kPartTriangles, n);

@@ -37,6 +37,9 @@ struct CpuMeshBounds {
   // corners among its chunk's vertices.
   std::vector<std::uint32_t> chunkVertexStart;  // one more than there are chunks
   std::vector<std::uint32_t> chunkVertices;
+  // The mesh's vertex of each entry of chunkVertices (a copy in that layout: a chunk's vertices
+  // are then read in a row when transformed, not gathered from all over the mesh).
+  std::vector<Eigen::Vector3f> chunkPositions;
   std::vector<std::array<std::uint8_t, 3>> cornersInChunk;
 };
 

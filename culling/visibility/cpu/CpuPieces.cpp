@@ -55,9 +55,8 @@ std::array<bool, 6> decidingFaces(const ScreenMatrix& cube, CpuCommand::Role rol
 
 }  // namespace
 
-void chunkPieces(const CpuRun& run, const Mesh& mesh, const CpuMeshBounds& bounds,
-                 const CpuCommand& c, const CpuItem& item, const PixelRect& window, double marginPx,
-                 CpuPieces& out) {
+void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuCommand& c,
+                 const CpuItem& item, const PixelRect& window, double marginPx, CpuPieces& out) {
   out.areQuads = false;
   out.count = 0;
   const bool listed = c.source == CpuCommand::Source::Listed;
@@ -84,7 +83,7 @@ void chunkPieces(const CpuRun& run, const Mesh& mesh, const CpuMeshBounds& bound
       const std::uint32_t tri = triangleAt(i);
       if (tri / kChunkTriangles != chunk) {
         chunk = tri / kChunkTriangles;
-        vertices = run.vertices.chunk(c, mesh, bounds, chunk);
+        vertices = run.vertices.chunk(c, bounds, chunk);
       }
       ScreenTriangle& s = out.triangles[kept];
       const auto& at = bounds.cornersInChunk[tri];

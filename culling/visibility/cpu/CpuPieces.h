@@ -11,7 +11,6 @@
 #include "culling/visibility/cpu/CpuMeshBounds.h"
 #include "culling/visibility/cpu/CpuRecording.h"
 #include "culling/visibility/cpu/CpuTriangleSetup.h"
-#include "scenes/Mesh.h"
 
 namespace cdb {
 
@@ -28,9 +27,8 @@ struct CpuPieces {
 // whose coverage margin is `marginPx`): of a closed mesh drawn whole only the faces that decide it
 // (CpuCommand::winding), and none whose pixel box misses the window (nor any of a part whose
 // rectangle misses it: its CpuItemParts).
-void chunkPieces(const CpuRun& run, const Mesh& mesh, const CpuMeshBounds& bounds,
-                 const CpuCommand& c, const CpuItem& item, const PixelRect& window, double marginPx,
-                 CpuPieces& out);
+void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuCommand& c,
+                 const CpuItem& item, const PixelRect& window, double marginPx, CpuPieces& out);
 
 // A box's matrix from the unit cube [-1, 1]^3 to the screen.
 [[nodiscard]] ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box);

@@ -54,8 +54,7 @@ void CpuScreenVertices::assign(CpuRecording& recording, std::span<const CpuMeshB
     states_[i].store(kNotTransformed, std::memory_order_relaxed);
 }
 
-const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const Mesh& mesh,
-                                                const CpuMeshBounds& bounds,
+const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const CpuMeshBounds& bounds,
                                                 std::uint32_t chunk) const {
   const Set& set = sets_[c.vertexSet];
   const std::size_t first = set.firstVertex + bounds.chunkVertexStart[chunk];
@@ -67,10 +66,10 @@ const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const Mesh&
       state.compare_exchange_strong(now, kTransforming, std::memory_order_acquire)) {
     const std::uint32_t begin = bounds.chunkVertexStart[chunk];
     const std::uint32_t end = bounds.chunkVertexStart[chunk + 1];
+    const Eigen::Vector3f* from = bounds.chunkPositions.data();
     for (std::uint32_t i = begin; i < end; ++i) {
       const Eigen::Vector3d p =
-          c.toScreen.leftCols<3>() * mesh.vertices[bounds.chunkVertices[i]].cast<double>() +
-          c.toScreen.col(3);
+          c.toScreen.leftCols<3>() * from[i].cast<double>() + c.toScreen.col(3);
       out[i - begin] = {p.x(), p.y(), p.z()};
     }
     state.store(kTransformed, std::memory_order_release);

@@ -13,7 +13,6 @@
 
 #include "culling/visibility/cpu/CpuMeshBounds.h"
 #include "culling/visibility/cpu/CpuRecording.h"
-#include "scenes/Mesh.h"
 
 namespace cdb {
 
@@ -26,9 +25,9 @@ class CpuScreenVertices {
   // Numbers the vertex sets of the (closed) recording's mesh commands (CpuCommand::vertexSet)
   // and makes room for them; none is transformed yet.
   void assign(CpuRecording& recording, std::span<const CpuMeshBounds> bounds);
-  // The vertices of chunk `chunk` of command `c`'s mesh (chunkVertices' order), transformed.
-  [[nodiscard]] const CpuScreenVertex* chunk(const CpuCommand& c, const Mesh& mesh,
-                                             const CpuMeshBounds& bounds,
+  // The vertices of chunk `chunk` of command `c`'s mesh (chunkVertices' order), transformed
+  // (read from bounds.chunkPositions).
+  [[nodiscard]] const CpuScreenVertex* chunk(const CpuCommand& c, const CpuMeshBounds& bounds,
                                              std::uint32_t chunk) const;
 
  private:

@@ -49,8 +49,7 @@ void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
   if (c.source == CpuCommand::Source::Boxes)
     boxPieces(recording, c, item.first, raster.conservative, pieces);
   else
-    chunkPieces(run, scene.geometry.meshes[c.mesh], scene.bounds[c.mesh], c, item, tileRect(depth),
-                raster.marginPx, pieces);
+    chunkPieces(run, scene.bounds[c.mesh], c, item, tileRect(depth), raster.marginPx, pieces);
 }
 
 // A write drawn whole where it is (the plain evaluation).
