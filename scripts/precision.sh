@@ -77,25 +77,9 @@ gl_plan=("cullide,quick_cullide,sorted,cis,ours" "$repeats" "--frame-stride 100"
 declare -A frames=([env1]="--frame-stride 50" [env2]="--frame-stride 50" [env3]="--frame-stride 20 --objects 200")
 needs_gl() { build/cdbench backends | grep -q "^$1 .*needs EGL"; }
 logs=$out/logs/precision
-# say TEXT: a line of progress (on a terminal it replaces the "...: running" line before it).
-say() {
-  if [[ -t 2 ]]; then printf '\r\033[K' >&2; fi
-  echo "precision: $*" >&2
-}
-# running TEXT: on a terminal, what runs now, until the next line replaces it.
-running() { if [[ -t 2 ]]; then printf 'precision: %s: running ...' "$*" >&2; fi; }
-# cell_counts LOG...: "MEASURED RESUMED" summed over what each share said when done (nothing when
-# no log says it).
-cell_counts() {
-  awk 'match($0, /[0-9]+ cells measured, [0-9]+ resumed/) {
-      split(substr($0, RSTART, RLENGTH), w, " "); m += w[1]; r += w[4]; n++ }
-    END { if (n) print m, r }' "$@" 2>/dev/null
-}
-# tail_of LOG: its last lines, indented, after the line saying where it is.
-tail_of() {
-  say "  the last lines of $1:"
-  tail -n 12 "$1" | sed 's/^/    /' >&2
-}
+progress_prefix=precision
+# shellcheck source=scripts/progress.sh
+source scripts/progress.sh
 # Shares per mode: one per cell, so that the two modes of every cell start together, where a
 # share's set-up (scene, ground truth, recording) takes well under a second; env2's takes ~3 s
 # (the dragons' trees), so its cells are dealt over 6 shares.
@@ -192,10 +176,10 @@ study() {
   if ((${#failed_logs[@]})); then
     say "$what FAILED after $((SECONDS - t0)) s: ${#failed_logs[@]} of $((2 * shares)) shares" \
       "failed (logs: $log-*.log)"
-    tail_of "${failed_logs[0]}"
+    show_log "${failed_logs[0]}"
   else
     say "$what FAILED after $((SECONDS - t0)) s: cdbench merge failed"
-    tail_of "${merge_failed[0]}"
+    show_log "${merge_failed[0]}"
   fi
   return 1
 }
