@@ -6,7 +6,7 @@
 #include <span>
 #include <unordered_map>
 
-#include "scenes/MeshMeasures.h"
+#include "culling/visibility/cpu/CpuPassSpace.h"
 
 namespace cdb {
 
@@ -82,8 +82,7 @@ std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
   all.reserve(scene.meshes.size());
   for (const Mesh& m : scene.meshes) {
     CpuMeshBounds& b = all.emplace_back();
-    const double volume = isClosedMesh(m) ? signedVolume(m) : 0.0;
-    b.winding = volume > 0 ? 1 : volume < 0 ? -1 : 0;
+    b.winding = meshWinding(m);
     const std::size_t n = m.triangles.size();
     b.order = chosenDrawOrder(m);
     b.position.resize(n);

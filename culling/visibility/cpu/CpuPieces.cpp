@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "culling/visibility/cpu/CpuPassSpace.h"
+
 namespace cdb {
 
 namespace {
@@ -116,8 +118,9 @@ void boxPieces(const CpuRecording& recording, const CpuCommand& c, std::uint32_t
   const ScreenMatrix cube = cubeToScreen(c.toScreen, recording.boxes[box]);
   std::array<Eigen::Vector3d, 8> corner;
   for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d u((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
-    corner[i] = cube.leftCols<3>() * u + cube.col(3);
+    const ScreenPoint p =
+        screenPoint(cube, (i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
+    corner[i] = {p.x, p.y, p.k};
   }
   const std::array<bool, 6> keep = decidingFaces(cube, c.role);
   out.areQuads = conservative;

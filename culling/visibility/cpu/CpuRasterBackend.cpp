@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "core/Errors.h"
+#include "culling/visibility/cpu/CpuPassSpace.h"
 #include "culling/visibility/cpu/CpuRasteriser.h"
 
 namespace cdb {
@@ -65,21 +66,7 @@ void CpuRasterBackend::setPoses(std::span<const Pose> poses) {
 
 CpuPass CpuRasterBackend::passFor(const DepthPassSetup& setup) const {
   CpuPass pass;
-  RasterPass& r = pass.raster;
-  r.resolution = setup.resolution;
-  r.sign = setup.reversed() ? -1.f : 1.f;
-  r.keyLo = static_cast<float>(r.sign * setup.depthNear);
-  r.keyHi = static_cast<float>(r.sign * setup.depthFar);
-  r.depthEpsilon = setup.depthEpsilon;
-  // GL's margin holds the snapping (1/16 pixel) and the rounding of float vertex transforms,
-  // about res 2^-20 (1 + magnitude / extent) pixels. Transforms here are in double (29 more
-  // bits): the same bound times 2^-16 still leaves 2^13 times double's rounding of the dozen
-  // operations of a transform, and snapping there is none.
-  r.marginPx = std::max(0.0, setup.coverageMarginPx - 1.0 / 16.0) / 65536.0;
-  // An NDC offset moves the window depth by half of it times the range.
-  r.rawTestOffset = options_.rawDepthOffset * 0.5 * std::abs(setup.depthFar - setup.depthNear);
-  r.conservative = options_.conservative;
-  r.orderIndependent = lastDepth_ == DepthUse::OrderIndependent;
+  pass.raster = rasterPassOf(setup, options_, lastDepth_ == DepthUse::OrderIndependent);
   pass.clears = setup.clear;
   pass.clearValue = static_cast<float>(setup.clearDepth);
   return pass;
@@ -95,11 +82,7 @@ void CpuRasterBackend::beginPass(const ViewSpec& view, DepthUse depth) {
     throw InputError("resolution " + std::to_string(setup.resolution) + " is outside 1.." +
                      std::to_string(kMaxResolution) + " (the CPU rasteriser's largest buffer)");
   setup_ = setup;
-  // World -> (x, y, key): key = sign * stored depth = sign * (near + t (far - near)).
-  const double sign = setup.reversed() ? -1.0 : 1.0;
-  worldToKey_.topRows<2>() = setup.worldToScreen.topRows<2>();
-  worldToKey_.row(2) = std::abs(setup.depthFar - setup.depthNear) * setup.worldToScreen.row(2);
-  worldToKey_(2, 3) += sign * setup.depthNear;
+  worldToKey_ = worldToKeyOf(setup);
   CpuRecording& recording = open_->recording;
   lastDepth_ = depth;
   lastResolution_ = view.resolution;

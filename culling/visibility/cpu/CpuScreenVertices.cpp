@@ -3,6 +3,8 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "culling/visibility/cpu/CpuPassSpace.h"
+
 namespace cdb {
 
 namespace {
@@ -68,9 +70,8 @@ const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const CpuMe
     const std::uint32_t end = bounds.chunkVertexStart[chunk + 1];
     const Eigen::Vector3f* from = bounds.chunkPositions.data();
     for (std::uint32_t i = begin; i < end; ++i) {
-      const Eigen::Vector3d p =
-          c.toScreen.leftCols<3>() * from[i].cast<double>() + c.toScreen.col(3);
-      out[i - begin] = {p.x(), p.y(), p.z()};
+      const ScreenPoint p = screenPoint(c.toScreen, from[i].x(), from[i].y(), from[i].z());
+      out[i - begin] = {p.x, p.y, p.k};
     }
     state.store(kTransformed, std::memory_order_release);
     state.notify_all();
