@@ -43,6 +43,7 @@ inline void renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
 inline void texture(GLuint id) { glDeleteTextures(1, &id); }
 inline void program(GLuint id) { glDeleteProgram(id); }
 inline void shader(GLuint id) { glDeleteShader(id); }
+inline void query(GLuint id) { glDeleteQueries(1, &id); }
 }  // namespace gldelete
 
 using GlBuffer = GlHandle<gldelete::buffer>;
@@ -52,6 +53,7 @@ using GlRenderbuffer = GlHandle<gldelete::renderbuffer>;
 using GlTexture = GlHandle<gldelete::texture>;
 using GlProgramName = GlHandle<gldelete::program>;
 using GlShaderName = GlHandle<gldelete::shader>;
+using GlQueryName = GlHandle<gldelete::query>;
 
 // A buffer holding `data`, its size fixed and its contents never changed by the client.
 template <class T>

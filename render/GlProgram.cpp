@@ -24,6 +24,8 @@ std::string_view stageName(GLenum type) {
       return "geometry";
     case GL_FRAGMENT_SHADER:
       return "fragment";
+    case GL_COMPUTE_SHADER:
+      return "compute";
     default:
       return "shader";
   }

@@ -8,7 +8,7 @@
 namespace cdb {
 
 struct ShaderStage {
-  GLenum type = 0;  // GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER
+  GLenum type = 0;  // GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER
   std::string_view source;
 };
 

@@ -4,6 +4,7 @@
 #include "culling/visibility/GlDrawFloor.h"
 #include "culling/visibility/GlFlagBackend.h"
 #include "culling/visibility/GlOcclusionQueryBackend.h"
+#include "culling/visibility/compute/GlComputeBackend.h"
 #include "culling/visibility/cpu/CpuRasterBackend.h"
 
 namespace cdb {
@@ -26,6 +27,15 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
           {.needsGl = true, .orderIndependent = true},
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlFlagBackend>(resources.gl(), options);
+          });
+    r.add("gl-compute",
+          "OpenGL 4.5 compute shaders: the cpu backend's exact conservative answers, set up, binned "
+          "to tiles and evaluated in issue order on the GPU's multiprocessors; one upload and one "
+          "read-back per fetch; known to differ from cpu on some BVH-box batches at 800 px "
+          "(cullide_bvh, ours), see docs/visibility-backends.md",
+          {.needsGl = true, .orderIndependent = true},
+          [](BackendResources& resources, const VisibilityOptions& options) {
+            return std::make_unique<GlComputeBackend>(resources.gl(), options);
           });
     r.add("cpu",
           "exact conservative CPU depth rasteriser (SIMD, threads); needs no GL",
