@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <tuple>
 
@@ -160,14 +161,26 @@ TEST_P(ComputeBackendEquivalence, SameAnswerToEveryQuery) {
               compared, fetch, occluded, compute.stageTimes().totalNs() / 1e6);
 }
 
+// Every case with CDBENCH_FULL_EQUIVALENCE=1 in the environment; otherwise (CI's budget on two
+// cores) 800 px only for env3 in both modes and env1 conservative: env2's dragons at 800 px and
+// env1 raw at 800 px add ~140 s of llvmpipe time to the release stage.
+bool inDefaultSet(const std::string& frame, int resolution, bool conservative) {
+  if (resolution != 800) return true;
+  return frame == "env3" || (frame == "env1" && conservative);
+}
+
 std::vector<ComputeCase> computeCases() {
+  const char* full = std::getenv("CDBENCH_FULL_EQUIVALENCE");
+  const bool all = full != nullptr && std::string(full) == "1";
   std::vector<ComputeCase> out;
   for (int f = 0; f < static_cast<int>(std::size(kRecordedFrames)); ++f)
     for (const auto& name : DetectorRegistry::builtin().names())
       if (DetectorRegistry::builtin().usesBackend(name) &&
           DetectorRegistry::builtin().runsOn(name, "cpu"))
         for (int resolution : {64, 800})
-          for (bool conservative : {true, false}) out.emplace_back(f, name, resolution, conservative);
+          for (bool conservative : {true, false})
+            if (all || inDefaultSet(kRecordedFrames[f].name, resolution, conservative))
+              out.emplace_back(f, name, resolution, conservative);
   return out;
 }
 
