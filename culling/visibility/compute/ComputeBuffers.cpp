@@ -5,8 +5,14 @@
 namespace cdb::compute {
 
 namespace {
-// Growth leaves room for a few more fetches of a growing frame.
-std::size_t grown(std::size_t needed) { return std::max<std::size_t>(256, needed + needed / 2); }
+// Growth leaves room for a few more fetches of a growing frame, but not past the largest storage
+// block the context binds (a buffer bound whole beyond it is read as zeros on llvmpipe).
+std::size_t grown(std::size_t needed) {
+  GLint most = 0;
+  glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &most);
+  const std::size_t room = std::max<std::size_t>(256, needed + needed / 2);
+  return most > 0 ? std::max(needed, std::min(room, static_cast<std::size_t>(most))) : room;
+}
 }  // namespace
 
 void DeviceBuffer::reserve(std::size_t bytes) {

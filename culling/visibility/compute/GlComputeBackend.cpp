@@ -462,6 +462,14 @@ void GlComputeBackend::flush() {
 
   const std::uint32_t answerCount = issued_ - base;
   const std::size_t pieces = std::size_t{chunks} * kChunkSlots;
+  // A storage block larger than the context binds is read as zeros on llvmpipe, not refused: a
+  // fetch that needs one fails here instead (llvmpipe binds 128 MiB: 1.6 million pieces).
+  const std::size_t most = static_cast<std::size_t>(glInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE));
+  if (pieces * kPieceCoverageBytes > most)
+    throw RunError("gl-compute: a fetch of " + std::to_string(pieces) + " pieces needs " +
+                   std::to_string(pieces * kPieceCoverageBytes >> 20) +
+                   " MiB in one storage block; this GL context binds at most " +
+                   std::to_string(most >> 20) + " MiB (fetches are not split yet)");
   pieceBoxes_.reserve(std::max<std::size_t>(pieces, 1) * 16);
   pieceCoverage_.reserve(std::max<std::size_t>(pieces, 1) * kPieceCoverageBytes);
   chunks_.reserve(std::max<std::uint32_t>(chunks, 1) * 32);
@@ -523,6 +531,11 @@ void GlComputeBackend::useProgram(const GlProgramName& program) const {
 }
 
 bool GlComputeBackend::runChain(std::uint32_t chunks, std::uint32_t tiles) {
+  const std::size_t most = static_cast<std::size_t>(glInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE));
+  if (listCapacity_ * 2 * sizeof(std::uint32_t) > most)
+    throw RunError("gl-compute: the fetch's tile lists need " + std::to_string(listCapacity_) +
+                   " entries, more than one storage block of this GL context holds (" +
+                   std::to_string(most >> 20) + " MiB; fetches are not split yet)");
   tileLists_.reserve(listCapacity_ * sizeof(std::uint32_t));
   tileLists_.bind(kTileLists);
   tileMasks_.reserve(listCapacity_ * 2 * sizeof(std::uint32_t));
