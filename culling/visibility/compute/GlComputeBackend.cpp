@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/Errors.h"
+#include "culling/visibility/DrawChecks.h"
 #include "culling/visibility/compute/ComputeShaders.h"
 #include "culling/visibility/cpu/CpuPassSpace.h"
 #include "culling/visibility/cpu/CpuPieces.h"
@@ -188,10 +189,7 @@ void GlComputeBackend::attachScene(const SceneGeometry& scene) {
 }
 
 void GlComputeBackend::setPoses(std::span<const Pose> poses) {
-  const std::size_t objects = scene_ ? scene_->objectCount() : 0;
-  if (poses.size() != objects)
-    throw RunError("got " + std::to_string(poses.size()) + " poses for a scene of " +
-                   std::to_string(objects) + " objects");
+  checkPoseCount(scene_, poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) poses_[i] = poses[i].matrix();
 }
 
@@ -236,33 +234,6 @@ void GlComputeBackend::beginPass(const ViewSpec& view, DepthUse depth) {
   if (setup.clear) ++counters_.depthClears;
 }
 
-void GlComputeBackend::checkObject(ObjectId object) const {
-  const std::size_t objects = scene_ ? scene_->objectCount() : 0;
-  if (object >= objects)
-    throw RunError("object " + std::to_string(object) + " is not in the attached scene of " +
-                   std::to_string(objects) + " objects");
-  if (!inPass_) throw RunError("a visibility draw was issued outside a pass");
-}
-
-void GlComputeBackend::checkRange(const MeshRange& range) const {
-  checkObject(range.object);
-  const std::size_t count = scene_->meshOf(range.object).triangleCount();
-  if (range.firstTriangle > count || range.triangleCount > count - range.firstTriangle)
-    throw RunError("triangles [" + std::to_string(range.firstTriangle) + ", +" +
-                   std::to_string(range.triangleCount) + ") are outside object " +
-                   std::to_string(range.object) + "'s " + std::to_string(count));
-}
-
-void GlComputeBackend::checkListed(ObjectId object,
-                                   std::span<const std::uint32_t> triangles) const {
-  checkObject(object);
-  const std::size_t count = scene_->meshOf(object).triangleCount();
-  for (std::uint32_t t : triangles)
-    if (t >= count)
-      throw RunError("triangle " + std::to_string(t) + " is outside object " +
-                     std::to_string(object) + "'s " + std::to_string(count));
-}
-
 GpuCommand& GlComputeBackend::record(std::uint32_t flags, ObjectId object, std::uint32_t count) {
   if (passes_.empty()) openPass(true);  // draws after a fetch go on in the open pass
   const bool test = (flags & kTest) != 0;
@@ -298,7 +269,7 @@ std::uint32_t rangeFlags(std::uint32_t role, std::int8_t winding, bool whole) {
 }  // namespace
 
 QueryIndex GlComputeBackend::queryRange(const MeshRange& range) {
-  checkRange(range);
+  checkRangeDrawn(scene_, range, inPass_);
   const QueryIndex q = issue(1);
   if (range.triangleCount == 0) return q;  // no sample: fully visible
   const std::uint32_t mesh = scene_->objects[range.object].mesh;
@@ -314,7 +285,7 @@ QueryIndex GlComputeBackend::queryBox(ObjectId object, const OrientedBox& localB
 }
 
 QueryIndex GlComputeBackend::queryTriangles(const MeshRange& range) {
-  checkRange(range);
+  checkRangeDrawn(scene_, range, inPass_);
   if (range.triangleCount == 0) return kNoQuery;
   const QueryIndex q = issue(range.triangleCount);
   GpuCommand& c = record(kTest | kAnswerEach, range.object, range.triangleCount);
@@ -325,7 +296,7 @@ QueryIndex GlComputeBackend::queryTriangles(const MeshRange& range) {
 
 QueryIndex GlComputeBackend::queryTriangles(ObjectId object,
                                             std::span<const std::uint32_t> triangles) {
-  checkListed(object, triangles);
+  checkListedDrawn(scene_, object, triangles, inPass_);
   if (triangles.empty()) return kNoQuery;
   const auto n = static_cast<std::uint32_t>(triangles.size());
   const QueryIndex q = issue(n);
@@ -349,7 +320,7 @@ void appendBoxes(std::vector<std::array<double, 12>>& out, const ScreenMatrix& t
 }  // namespace
 
 QueryIndex GlComputeBackend::queryBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
-  checkObject(object);
+  checkObjectDrawn(scene_, object, inPass_);
   if (localBoxes.empty()) return kNoQuery;
   const auto n = static_cast<std::uint32_t>(localBoxes.size());
   const QueryIndex q = issue(n);
@@ -361,7 +332,7 @@ QueryIndex GlComputeBackend::queryBoxes(ObjectId object, std::span<const Oriente
 }
 
 void GlComputeBackend::writeRange(const MeshRange& range) {
-  checkRange(range);
+  checkRangeDrawn(scene_, range, inPass_);
   if (range.triangleCount == 0) return;
   const std::uint32_t mesh = scene_->objects[range.object].mesh;
   const bool whole = range.triangleCount == scene_->meshes[mesh].triangleCount();
@@ -371,7 +342,7 @@ void GlComputeBackend::writeRange(const MeshRange& range) {
 }
 
 void GlComputeBackend::writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) {
-  checkListed(object, triangles);
+  checkListedDrawn(scene_, object, triangles, inPass_);
   if (triangles.empty()) return;
   const auto n = static_cast<std::uint32_t>(triangles.size());
   GpuCommand& c = record(kListed, object, n);
@@ -385,7 +356,7 @@ void GlComputeBackend::writeBox(ObjectId object, const OrientedBox& localBox) {
 }
 
 void GlComputeBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
-  checkObject(object);
+  checkObjectDrawn(scene_, object, inPass_);
   if (localBoxes.empty()) return;
   const auto n = static_cast<std::uint32_t>(localBoxes.size());
   GpuCommand& c = record(kBoxes, object, n);

@@ -83,9 +83,6 @@ class GlComputeBackend final : public VisibilityBackend {
   [[nodiscard]] float storedDepth(int x, int y);
 
  private:
-  void checkObject(ObjectId object) const;
-  void checkRange(const MeshRange& range) const;
-  void checkListed(ObjectId object, std::span<const std::uint32_t> triangles) const;
   compute::GpuCommand& record(std::uint32_t flags, ObjectId object, std::uint32_t count);
   QueryIndex issue(std::uint32_t count);
   // A pass for the recording (the open pass again when draws go on after a fetch).

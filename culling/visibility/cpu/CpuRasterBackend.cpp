@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "core/Errors.h"
+#include "culling/visibility/DrawChecks.h"
 #include "culling/visibility/cpu/CpuPassSpace.h"
 #include "culling/visibility/cpu/CpuRasteriser.h"
 
@@ -57,10 +58,7 @@ void CpuRasterBackend::attachScene(const SceneGeometry& scene) {
 }
 
 void CpuRasterBackend::setPoses(std::span<const Pose> poses) {
-  const std::size_t objects = scene_ ? scene_->objectCount() : 0;
-  if (poses.size() != objects)
-    throw RunError("got " + std::to_string(poses.size()) + " poses for a scene of " +
-                   std::to_string(objects) + " objects");
+  checkPoseCount(scene_, poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) poses_[i] = poses[i].matrix();
 }
 
@@ -95,33 +93,6 @@ void CpuRasterBackend::beginPass(const ViewSpec& view, DepthUse depth) {
   inPass_ = true;
   ++counters_.passes;
   if (setup.clear) ++counters_.depthClears;
-}
-
-void CpuRasterBackend::checkObject(ObjectId object) const {
-  const std::size_t objects = scene_ ? scene_->objectCount() : 0;
-  if (object >= objects)
-    throw RunError("object " + std::to_string(object) + " is not in the attached scene of " +
-                   std::to_string(objects) + " objects");
-  if (!inPass_) throw RunError("a visibility draw was issued outside a pass");
-}
-
-void CpuRasterBackend::checkRange(const MeshRange& range) const {
-  checkObject(range.object);
-  const std::size_t count = scene_->meshOf(range.object).triangleCount();
-  if (range.firstTriangle > count || range.triangleCount > count - range.firstTriangle)
-    throw RunError("triangles [" + std::to_string(range.firstTriangle) + ", +" +
-                   std::to_string(range.triangleCount) + ") are outside object " +
-                   std::to_string(range.object) + "'s " + std::to_string(count));
-}
-
-void CpuRasterBackend::checkListed(ObjectId object,
-                                   std::span<const std::uint32_t> triangles) const {
-  checkObject(object);
-  const std::size_t count = scene_->meshOf(object).triangleCount();
-  for (std::uint32_t t : triangles)
-    if (t >= count)
-      throw RunError("triangle " + std::to_string(t) + " is outside object " +
-                     std::to_string(object) + "'s " + std::to_string(count));
 }
 
 CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source source,
@@ -196,7 +167,7 @@ QueryIndex CpuRasterBackend::issue(std::uint32_t count) {
 }
 
 QueryIndex CpuRasterBackend::queryRange(const MeshRange& range) {
-  checkRange(range);
+  checkRangeDrawn(scene_, range, inPass_);
   const QueryIndex q = issue(1);
   if (range.triangleCount == 0) return q;  // no sample: fully visible
   recordRange(CpuCommand::Role::Test, range).query = q;
@@ -209,7 +180,7 @@ QueryIndex CpuRasterBackend::queryBox(ObjectId object, const OrientedBox& localB
 
 // A batch: one draw, an answer per triangle or box.
 QueryIndex CpuRasterBackend::queryTriangles(const MeshRange& range) {
-  checkRange(range);
+  checkRangeDrawn(scene_, range, inPass_);
   if (range.triangleCount == 0) return kNoQuery;
   const QueryIndex q = issue(range.triangleCount);
   CpuCommand& c = recordRange(CpuCommand::Role::Test, range);
@@ -219,7 +190,7 @@ QueryIndex CpuRasterBackend::queryTriangles(const MeshRange& range) {
 
 QueryIndex CpuRasterBackend::queryTriangles(ObjectId object,
                                             std::span<const std::uint32_t> triangles) {
-  checkListed(object, triangles);
+  checkListedDrawn(scene_, object, triangles, inPass_);
   if (triangles.empty()) return kNoQuery;
   const QueryIndex q = issue(static_cast<std::uint32_t>(triangles.size()));
   CpuCommand& c = recordListed(CpuCommand::Role::Test, object, triangles);
@@ -228,7 +199,7 @@ QueryIndex CpuRasterBackend::queryTriangles(ObjectId object,
 }
 
 QueryIndex CpuRasterBackend::queryBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
-  checkObject(object);
+  checkObjectDrawn(scene_, object, inPass_);
   if (localBoxes.empty()) return kNoQuery;
   const QueryIndex q = issue(static_cast<std::uint32_t>(localBoxes.size()));
   CpuCommand& c = recordBoxes(CpuCommand::Role::Test, object, localBoxes);
@@ -237,12 +208,12 @@ QueryIndex CpuRasterBackend::queryBoxes(ObjectId object, std::span<const Oriente
 }
 
 void CpuRasterBackend::writeRange(const MeshRange& range) {
-  checkRange(range);
+  checkRangeDrawn(scene_, range, inPass_);
   if (range.triangleCount != 0) recordRange(CpuCommand::Role::Write, range);
 }
 
 void CpuRasterBackend::writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) {
-  checkListed(object, triangles);
+  checkListedDrawn(scene_, object, triangles, inPass_);
   if (!triangles.empty()) recordListed(CpuCommand::Role::Write, object, triangles);
 }
 
@@ -251,7 +222,7 @@ void CpuRasterBackend::writeBox(ObjectId object, const OrientedBox& localBox) {
 }
 
 void CpuRasterBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
-  checkObject(object);
+  checkObjectDrawn(scene_, object, inPass_);
   if (!localBoxes.empty()) recordBoxes(CpuCommand::Role::Write, object, localBoxes);
 }
 

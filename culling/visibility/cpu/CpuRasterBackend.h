@@ -74,9 +74,6 @@ class CpuRasterBackend final : public VisibilityBackend {
   [[nodiscard]] float storedDepth(int x, int y);
 
  private:
-  void checkObject(ObjectId object) const;
-  void checkRange(const MeshRange& range) const;
-  void checkListed(ObjectId object, std::span<const std::uint32_t> triangles) const;
   // A command of the open pass, with the object's matrix into its screen space.
   CpuCommand& record(CpuCommand::Role role, CpuCommand::Source source, ObjectId object);
   // A command drawing `range` (a Range of a whole mesh, with its winding; a part listed), listed
