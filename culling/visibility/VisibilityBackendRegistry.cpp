@@ -31,8 +31,7 @@ const VisibilityBackendRegistry& VisibilityBackendRegistry::builtin() {
     r.add("gl-compute",
           "OpenGL 4.5 compute shaders: the cpu backend's exact conservative answers, set up, binned "
           "to tiles and evaluated in issue order on the GPU's multiprocessors; one upload and one "
-          "read-back per fetch; known to differ from cpu on some BVH-box batches at 800 px "
-          "(cullide_bvh, ours), see docs/visibility-backends.md",
+          "read-back per fetch",
           {.needsGl = true, .orderIndependent = true},
           [](BackendResources& resources, const VisibilityOptions& options) {
             return std::make_unique<GlComputeBackend>(resources.gl(), options);

@@ -66,27 +66,10 @@ bool cpuLoopsFuse() {
 
 using ComputeCase = std::tuple<int, std::string, int, bool>;  // frame, strategy, resolution, conservative
 
-// Cases where gl-compute does not answer as cpu yet (issue 44 stays open on them): at 800 px on
-// env1's and env2's frames, a batch of BVH-node boxes (queryBoxes, which cullide_bvh and ours
-// draw) has a box answered "fully visible" that cpu finds occluded, by a wide depth margin; on
-// env1 the same box tested alone, or in the first 8 boxes of its batch, is answered as cpu answers
-// it. They are skipped by name, so that the rest guards what agrees;
-// docs/visibility-backends.md says what was ruled out.
-bool knownDifference(const std::string& name) {
-  for (const char* known : {"env1_cullide_bvh_800", "env1_cullide_bvh_800_raw", "env1_ours_800_raw",
-                            "env2_cullide_bvh_800", "env2_cullide_bvh_800_raw", "env2_ours_800",
-                            "env2_ours_800_raw"})
-    if (name == known) return true;
-  return false;
-}
-
 class ComputeBackendEquivalence : public ::testing::TestWithParam<ComputeCase> {};
 
 TEST_P(ComputeBackendEquivalence, SameAnswerToEveryQuery) {
   const auto& [frameIndex, strategyName, resolution, conservative] = GetParam();
-  const std::string caseName = std::string(kRecordedFrames[frameIndex].name) + "_" + strategyName +
-                               "_" + std::to_string(resolution) + (conservative ? "" : "_raw");
-  if (knownDifference(caseName)) GTEST_SKIP() << caseName << ": a known difference (issue 44)";
   if (!cpuLoopsFuse()) GTEST_SKIP() << "the cpu backend's loops run on " << rasteriserTarget();
   const RecordedFrame& f = kRecordedFrames[frameIndex];
   ComputeShared& shared = ComputeShared::get();
@@ -127,20 +110,6 @@ TEST_P(ComputeBackendEquivalence, SameAnswerToEveryQuery) {
     std::size_t differ = 0, first = got.size();
     for (std::size_t i = 0; i < got.size(); ++i)
       if (got[i] != op.answers[i]) first = std::min(first, i), ++differ;
-    if (differ) {
-      std::size_t issued = 0, round = 0;
-      for (const VisibilityCall& o : recorder.ops()) {
-        if (o.kind == VisibilityCall::Kind::FetchResults) { ++round; issued = 0; continue; }
-        if (o.kind == VisibilityCall::Kind::BeginPass && round == fetch) std::printf("pass depth %d res %d\n", int(o.depth), o.view.resolution);
-        std::size_t n = o.kind == VisibilityCall::Kind::QueryRange || o.kind == VisibilityCall::Kind::QueryBox ? 1 : o.kind == VisibilityCall::Kind::QueryTriangleRange ? o.range.triangleCount : o.kind == VisibilityCall::Kind::QueryTriangles ? o.triangles.size() : o.kind == VisibilityCall::Kind::QueryBoxes ? o.boxes.size() : 0;
-        if (round == fetch) {
-          bool bad = false;
-          for (std::size_t q = issued; q < issued + n; ++q) bad = bad || got[q] != op.answers[q];
-          std::printf("op kind %d object %u n %zu%s\n", int(o.kind), o.object, n, bad ? " DIFFERS" : "");
-        }
-        issued += n;
-      }
-    }
     ASSERT_EQ(differ, 0u) << "fetch " << fetch << ": " << differ << " of " << got.size()
                           << " answers differ, the first query " << first << " (cpu "
                           << int(op.answers[first]) << ", gl-compute " << int(got[first]) << ")";

@@ -216,6 +216,72 @@ TEST_P(OcclusionSemantics, BatchesAnswerEachPieceAgainstWhatWasWrittenBefore) {
   EXPECT_EQ(backend_->counters().queries, 11u);
 }
 
+// Thousands of draws over the same pixels in one pass keep their issue order: tests issued before
+// a write do not see it, tests after it do. The tested object is 64 copies of B's square, so that
+// each of its draws reaches every pixel 128 times: over 300,000 piece evaluations a pixel.
+// (gl-compute lists each draw's chunks of 64 pieces in every tile they reach and sorts the lists
+// back into issue order: lists this long are sorted in global memory; llvmpipe ends a shader
+// invocation's loops after 65,535 iterations, so there the tiles are evaluated in several
+// dispatches.)
+TEST_P(OcclusionSemantics, ThousandsOfDrawsOverOnePixelKeepTheirOrder) {
+  Mesh stack;
+  stack.name = "64 squares";
+  for (int copy = 0; copy < 64; ++copy) {
+    const Mesh square = squareMesh(0, 0, 2, 1);
+    const auto first = static_cast<std::uint32_t>(stack.vertices.size());
+    stack.vertices.insert(stack.vertices.end(), square.vertices.begin(), square.vertices.end());
+    for (Triangle t : square.triangles) stack.triangles.push_back({first + t[0], first + t[1], first + t[2]});
+  }
+  scene_ = test::sceneOf({squareMesh(0, 0, 0, 1), stack, squareMesh(0, 0, -2, 1), squareMesh(5, 0, 0, 1)});
+  backend_->attachScene(scene_);
+  backend_->setPoses(test::identityPoses(scene_.objectCount()));
+  constexpr int kBefore = 1200, kAfter = 1200;
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  std::vector<QueryIndex> before, after, inFront;
+  for (int i = 0; i < kBefore; ++i) before.push_back(backend_->queryRange(wholeOf(scene_, 1)));
+  backend_->writeRange(wholeOf(scene_, 0));  // A, in front of the stack
+  for (int i = 0; i < kAfter; ++i) {
+    after.push_back(backend_->queryRange(wholeOf(scene_, 1)));
+    if (i % 100 == 0) inFront.push_back(backend_->queryRange(wholeOf(scene_, 2)));
+  }
+  std::vector<std::uint8_t> answers;
+  backend_->fetchResults(answers);
+  ASSERT_EQ(answers.size(), before.size() + after.size() + inFront.size());
+  int seenBefore = 0, missedAfter = 0, hiddenInFront = 0;
+  for (QueryIndex q : before) seenBefore += answers[q] == 0;
+  for (QueryIndex q : after) missedAfter += answers[q] == 1;
+  for (QueryIndex q : inFront) hiddenInFront += answers[q] == 0;
+  EXPECT_EQ(seenBefore, 0) << "the stack tested before A was written is fully visible";
+  EXPECT_EQ(missedAfter, 0) << "the stack tested after A was written is behind it";
+  EXPECT_EQ(hiddenInFront, 0) << "C in front of A stays fully visible";
+}
+
+// A write of many large triangles covering the whole image at 800 px hides what lies behind it in
+// every corner. (gl-compute bins each chunk of 64 pieces to the 2,500 tiles it reaches: a loop
+// llvmpipe would have cut short had one invocation walked them all.)
+TEST_P(OcclusionSemantics, AWriteCoveringTheImageHidesEveryCorner) {
+  Mesh wall;
+  wall.name = "64 walls";
+  for (int copy = 0; copy < 64; ++copy) {
+    const Mesh square = squareMesh(2.5f, 0, 0.01f * static_cast<float>(copy), 20);
+    const auto first = static_cast<std::uint32_t>(wall.vertices.size());
+    wall.vertices.insert(wall.vertices.end(), square.vertices.begin(), square.vertices.end());
+    for (Triangle t : square.triangles) wall.triangles.push_back({first + t[0], first + t[1], first + t[2]});
+  }
+  scene_ = test::sceneOf({wall, squareMesh(-1.6f, -1.6f, 2, 0.3f), squareMesh(6.6f, 1.6f, 2, 0.3f),
+                          squareMesh(-1.6f, 1.6f, 2, 0.3f), squareMesh(6.6f, -1.6f, 2, 0.3f),
+                          squareMesh(2.5f, 0, -2, 0.3f)});
+  backend_->attachScene(scene_);
+  backend_->setPoses(test::identityPoses(scene_.objectCount()));
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ(), 800), DepthUse::Fresh);
+  backend_->writeRange(wholeOf(scene_, 0));
+  for (ObjectId corner = 1; corner <= 5; ++corner) backend_->queryRange(wholeOf(scene_, corner));
+  std::vector<std::uint8_t> answers;
+  backend_->fetchResults(answers);
+  EXPECT_EQ(answers, (std::vector<std::uint8_t>{0, 0, 0, 0, 1}))
+      << "four corners behind the wall, one square in front of it";
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, OcclusionSemantics,
                          testing::Combine(testing::ValuesIn(test::registeredBackends()), testing::Bool()),
                          ParamName());

@@ -64,19 +64,36 @@ struct GpuChain {
 };
 static_assert(sizeof(GpuChain) == 32);
 
+// Mesa's llvmpipe ends every loop of a shader invocation once the invocation has run 65,535 loop
+// iterations in all (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), silently. Every stage's loops are
+// bounded below that by construction where the driver is llvmpipe: the tile evaluation takes at
+// most this many entries of a tile's list per dispatch (each entry at most 65 iterations), heavier
+// tiles go on in further dispatches from a saved state; what cannot be bounded sets `truncated`.
+inline constexpr std::uint32_t kLoopLimitedSegment = 512;
+// Tiles of a chain a side at most (GlComputeBackend::kMaxResolution / kTile): binning's shared
+// masks per tile column and row.
+inline constexpr int kMaxTileColumns = 1024;
+// `truncated` bits: the stage whose loops would have passed the driver's limit.
+inline constexpr std::uint32_t kCutScan = 1u;
+inline constexpr std::uint32_t kCutSort = 2u;
+
 // The counts and the status the chain of dispatches leaves for the fetch to read.
 struct GpuStatus {
   std::uint32_t listCapacity = 0;  // entries the tile lists hold
-  std::uint32_t overflow = 0;      // the lists needed more: nothing was evaluated
+  std::uint32_t overflow = 0;      // the lists (or heavy tiles' states) needed more: nothing was evaluated
   std::uint32_t entries = 0;       // (chunk, tile) entries binned
   std::uint32_t pixelsTested = 0;
   std::uint32_t pixelsWritten = 0;
   std::uint32_t usedTiles = 0;     // tiles with a chunk listed
-  std::uint32_t unused[2] = {};
+  std::uint32_t heavyTiles = 0;    // tiles with more entries than one evaluation dispatch takes
+  std::uint32_t mostEntries = 0;   // the longest list of those
   std::uint32_t tileGroups[3] = {};  // binSort's and evaluate's dispatch: a workgroup a used tile
-  std::uint32_t unused2[5] = {};
+  std::uint32_t heavyCapacity = 0;   // heavy tiles' states the state buffer holds
+  std::uint32_t truncated = 0;       // kCut* bits
+  std::uint32_t unused[3] = {};
 };
 inline constexpr std::size_t kTileGroupsOffset = 8 * sizeof(std::uint32_t);
+inline constexpr std::size_t kHeavyCapacityOffset = 11 * sizeof(std::uint32_t);
 static_assert(sizeof(GpuStatus) == 64);
 
 }  // namespace cdb::compute

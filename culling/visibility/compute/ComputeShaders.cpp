@@ -29,6 +29,9 @@ const uint kRetained = )" + std::to_string(kRetained) + R"(u;
 const uint kChainOrderIndependent = )" + std::to_string(kChainOrderIndependent) + R"(u;
 const uint kChunkSlots = )" + std::to_string(kChunkSlots) + R"(u;
 const int kTile = )" + std::to_string(kTile) + R"(;
+const int kMaxTileColumns = )" + std::to_string(kMaxTileColumns) + R"(;
+const uint kCutScan = )" + std::to_string(kCutScan) + R"(u;
+const uint kCutSort = )" + std::to_string(kCutSort) + R"(u;
 const uint kNoObject = 0xffffffffu;
 
 struct Command {
@@ -73,14 +76,21 @@ layout(std430, binding = 12) buffer TileOffsets { uint tileOffset[]; };
 layout(std430, binding = 13) buffer TileLists { uint tileList[]; };
 layout(std430, binding = 19) buffer TileMasks { uvec2 tileMask[]; };
 #endif
+#ifdef HEAVY
+// Per tile with more entries than one evaluation dispatch takes: its index among those (binScan),
+// and those tiles' pixel states between dispatches (value, object, others; 256 words each).
+layout(std430, binding = 20) buffer TileHeavy { uint tileHeavy[]; };
+layout(std430, binding = 21) buffer HeavyStates { uint heavyState[]; };
+#endif
 #ifdef ANSWERS
 layout(std430, binding = 14) buffer Answers { uint answers[]; };
 #endif
 #ifdef STATUS
 layout(std430, binding = 15) buffer Status {
   uint listCapacity; uint overflow; uint entries; uint pixelsTested; uint pixelsWritten;
-  uint usedTiles; uint unused0; uint unused1;
+  uint usedTiles; uint heavyTiles; uint mostEntries;
   uint tileGroups[3];  // the dispatch of binSort and evaluate: a workgroup a used tile
+  uint heavyCapacity; uint truncated;
 };
 layout(std430, binding = 18) buffer UsedTiles { uint usedTile[]; };
 #endif
@@ -98,6 +108,10 @@ uniform uint commandCount;
 uniform uint chunkCount;
 uniform uint tileTotal;
 uniform uint chainCount;
+// Entries of a tile's list one evaluation dispatch takes (ComputeLayout.h: kLoopLimitedSegment
+// where the driver limits loops), and whether it does.
+uniform uint segmentEntries;
+uniform uint loopLimited;
 
 // The workgroup's index in a dispatch of (x, y) workgroups (more than 65535 in two dimensions).
 uint workgroupIndex() { return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x; }
@@ -430,56 +444,80 @@ void main() {
 }
 )";
 
-// The tiles of a chunk's rectangle in its chain, for binCount and binFill.
+// A workgroup per chunk: which of its pieces reach each tile column and each tile row of its
+// rectangle (a piece reaches a tile when it reaches both: its box is a rectangle), for binCount
+// and binFill; an invocation per piece sets its bits, then the tiles are shared out. Loops per
+// invocation: a piece's columns and rows (at most kMaxTileColumns each) and the rectangle's tiles
+// over 64 (at most kMaxTileColumns^2 / 64): within llvmpipe's limit.
 constexpr const char* kChunkTiles = R"(
 layout(local_size_x = 64) in;
-uint chunkOfInvocation() { return workgroupIndex() * 64u + gl_LocalInvocationIndex; }
-// Which of the chunk's pieces have a pixel in tile (tx, ty).
-uvec2 piecesInTile(uint chunk, uint count, int tx, int ty) {
-  ivec4 tile = ivec4(tx * kTile, ty * kTile, tx * kTile + kTile - 1, ty * kTile + kTile - 1);
-  uint low = 0u, high = 0u;
-  for (uint s = 0u; s < count; ++s) {
-    ivec4 b = pieceBox[chunk * kChunkSlots + s];
-    if (b.x <= tile.z && tile.x <= b.z && b.y <= tile.w && tile.y <= b.w) {
-      if (s < 32u) low |= 1u << s; else high |= 1u << (s - 32u);
+shared uint columnLow[kMaxTileColumns], columnHigh[kMaxTileColumns];
+shared uint rowLow[kMaxTileColumns], rowHigh[kMaxTileColumns];
+// The chunk's tile rectangle, its bits set.
+ivec4 chunkMasks(uint chunk, Chunk k) {
+  ivec4 tiles = k.rect / kTile;
+  int lane = int(gl_LocalInvocationIndex);
+  int columns = tiles.z - tiles.x + 1, rows = tiles.w - tiles.y + 1;
+  for (int i = lane; i < columns; i += 64) columnLow[i] = 0u, columnHigh[i] = 0u;
+  for (int i = lane; i < rows; i += 64) rowLow[i] = 0u, rowHigh[i] = 0u;
+  memoryBarrierShared();
+  barrier();
+  if (uint(lane) < k.count) {
+    ivec4 b = pieceBox[chunk * kChunkSlots + uint(lane)];
+    if (b.x <= b.z && b.y <= b.w) {
+      uint bit = 1u << uint(lane & 31);
+      ivec4 at = b / kTile - tiles.xyxy;
+      for (int c = at.x; c <= at.z; ++c)
+        if (lane < 32) atomicOr(columnLow[c], bit); else atomicOr(columnHigh[c], bit);
+      for (int r = at.y; r <= at.w; ++r)
+        if (lane < 32) atomicOr(rowLow[r], bit); else atomicOr(rowHigh[r], bit);
     }
   }
-  return uvec2(low, high);
+  memoryBarrierShared();
+  barrier();
+  return tiles;
+}
+// Which of the chunk's pieces reach tile (column, row) of its rectangle.
+uvec2 piecesInTile(int column, int row) {
+  return uvec2(columnLow[column] & rowLow[row], columnHigh[column] & rowHigh[row]);
 }
 )";
 
 constexpr const char* kBinCount = R"(
 void main() {
-  uint chunk = chunkOfInvocation();
+  uint chunk = workgroupIndex();
   if (chunk >= chunkCount) return;
   Chunk k = chunks[chunk];
   if (k.rect.x > k.rect.z) return;
   Chain ch = chains[k.flags >> 9];
-  ivec4 rect = k.rect;
-  for (int ty = rect.y / kTile; ty <= rect.w / kTile; ++ty)
-    for (int tx = rect.x / kTile; tx <= rect.z / kTile; ++tx)
-      if (piecesInTile(chunk, k.count, tx, ty) != uvec2(0u))
-        atomicAdd(tileCount[ch.firstTile + uint(ty * ch.tilesX + tx)], 1u);
+  ivec4 tiles = chunkMasks(chunk, k);
+  int columns = tiles.z - tiles.x + 1, n = columns * (tiles.w - tiles.y + 1);
+  for (int i = int(gl_LocalInvocationIndex); i < n; i += 64) {
+    int column = i % columns, row = i / columns;
+    if (piecesInTile(column, row) != uvec2(0u))
+      atomicAdd(tileCount[ch.firstTile + uint((tiles.y + row) * ch.tilesX + tiles.x + column)], 1u);
+  }
 }
 )";
 
 constexpr const char* kBinFill = R"(
 void main() {
-  uint chunk = chunkOfInvocation();
+  uint chunk = workgroupIndex();
   if (chunk >= chunkCount || overflow != 0u) return;
   Chunk k = chunks[chunk];
   if (k.rect.x > k.rect.z) return;
   Chain ch = chains[k.flags >> 9];
-  ivec4 rect = k.rect;
-  for (int ty = rect.y / kTile; ty <= rect.w / kTile; ++ty)
-    for (int tx = rect.x / kTile; tx <= rect.z / kTile; ++tx) {
-      uvec2 mask = piecesInTile(chunk, k.count, tx, ty);
-      if (mask == uvec2(0u)) continue;
-      uint tile = ch.firstTile + uint(ty * ch.tilesX + tx);
-      uint at = tileOffset[tile] + atomicAdd(tileCount[tile], 1u);
-      tileList[at] = chunk;
-      tileMask[at] = mask;
-    }
+  ivec4 tiles = chunkMasks(chunk, k);
+  int columns = tiles.z - tiles.x + 1, n = columns * (tiles.w - tiles.y + 1);
+  for (int i = int(gl_LocalInvocationIndex); i < n; i += 64) {
+    int column = i % columns, row = i / columns;
+    uvec2 mask = piecesInTile(column, row);
+    if (mask == uvec2(0u)) continue;
+    uint tile = ch.firstTile + uint((tiles.y + row) * ch.tilesX + tiles.x + column);
+    uint at = tileOffset[tile] + atomicAdd(tileCount[tile], 1u);
+    tileList[at] = chunk;
+    tileMask[at] = mask;
+  }
 }
 )";
 
@@ -492,6 +530,10 @@ shared uint runTotal[256];
 void main() {
   uint id = gl_LocalInvocationIndex;
   uint per = (tileTotal + 255u) / 256u;
+  if (loopLimited != 0u && per > 30000u) {  // two loops over a run, and invocation 0's 256
+    if (id == 0u) atomicOr(truncated, kCutScan), overflow = 1u;
+    return;
+  }
   uint begin = min(id * per, tileTotal), end = min(begin + per, tileTotal);
   uint sum = 0u;
   for (uint t = begin; t < end; ++t) sum += tileCount[t];
@@ -516,13 +558,18 @@ void main() {
     tileOffset[t] = at;
     uint n = tileCount[t];
     if (n != 0u) usedTile[atomicAdd(usedTiles, 1u)] = t;
+    if (n > segmentEntries) {
+      tileHeavy[t] = atomicAdd(heavyTiles, 1u);
+      atomicMax(mostEntries, n);
+    }
     at += n;
     tileCount[t] = 0u;
   }
   memoryBarrierBuffer();
   barrier();
   if (id == 0u) {
-    uint used = overflow != 0u ? 0u : usedTiles;
+    if (atomicAdd(heavyTiles, 0u) > heavyCapacity) overflow = 1u;
+    uint used = overflow != 0u ? 0u : atomicAdd(usedTiles, 0u);
     uint x = min(used, 65535u);
     tileGroups[0] = x, tileGroups[1] = x == 0u ? 0u : (used + x - 1u) / x, tileGroups[2] = 1u;
   }
@@ -546,7 +593,7 @@ void main() {
   uint id = gl_LocalInvocationIndex;
   if (n <= 256u) {
     // A short list, in nearly the order the chunks were numbered: one invocation's insertion sort
-    // costs no barrier.
+    // costs no barrier (at most 256 * 255 / 2 + 255 loop iterations: within llvmpipe's limit).
     if (id != 0u) return;
     for (uint i = begin + 1u; i < begin + n; ++i) {
       uint key = tileList[i];
@@ -559,6 +606,13 @@ void main() {
   }
   uint size = 1u;
   while (size < n) size <<= 1;
+  // The network's loops per invocation: log2(size) (log2(size) + 1) / 2 steps of size / 512
+  // pairs each, and the copies; a list too long for llvmpipe's loop limit is not sorted.
+  uint steps = uint(findMSB(size)) * uint(findMSB(size) + 1) / 2u;
+  if (loopLimited != 0u && steps * (size / 512u + 2u) + 2u * (n / 256u + 1u) > 60000u) {
+    if (id == 0u) atomicOr(truncated, kCutSort);
+    return;
+  }
   bool inShared = n <= kShared;
   if (inShared) {
     for (uint i = id; i < n; i += 256u) keys[i] = tileList[begin + i], masks[i] = tileMask[begin + i];
@@ -603,24 +657,38 @@ void main() {
 )";
 
 // The evaluation: CpuRasteriser's coverage and depth rules per pixel, the plain evaluation of
-// every write and test in issue order.
+// every write and test in issue order. A dispatch takes at most segmentEntries entries of a tile's
+// list (at most 65 loop iterations each); a longer list's tile saves its pixels' state for the
+// next dispatch.
 constexpr const char* kEvaluate = R"(
 layout(local_size_x = kTile, local_size_y = kTile) in;
+uniform uint segment;
 
 // CpuRasteriser's blockCover for the piece's box inside 8x8 block (bx, by): 0 none, 1 partial,
-// 2 whole.
+// 2 whole; an edge at a time (written out, not looped: llvmpipe counts loop iterations).
+int edgeCover(float A, float B, float C, float LO, float HI, float dxA, float dxB, float dyA,
+              float dyB) {
+  precise float ax = A * dxA, bx2 = A * dxB, ay = B * dyA, by2 = B * dyB;
+  precise float fMin = C + fminOf(ax, bx2) + fminOf(ay, by2);
+  precise float fMax = C + fmaxOf(ax, bx2) + fmaxOf(ay, by2);
+  if (fMax < LO || fMin > HI) return 0;
+  return fMin >= LO && fMax <= HI ? 2 : 1;
+}
 int blockCover(ivec4 box, vec4 A, vec4 B, vec4 C, vec4 LO, vec4 HI, int bx, int by) {
   precise float dxA = float(max(box.x, bx * 8) - box.x), dxB = float(min(box.z, bx * 8 + 7) - box.x);
   precise float dyA = float(max(box.y, by * 8) - box.y), dyB = float(min(box.w, by * 8 + 7) - box.y);
-  int cover = 2;
-  for (int e = 0; e < 3; ++e) {
-    precise float ax = A[e] * dxA, bx2 = A[e] * dxB, ay = B[e] * dyA, by2 = B[e] * dyB;
-    precise float fMin = C[e] + fminOf(ax, bx2) + fminOf(ay, by2);
-    precise float fMax = C[e] + fmaxOf(ax, bx2) + fmaxOf(ay, by2);
-    if (fMax < LO[e] || fMin > HI[e]) return 0;
-    if (!(fMin >= LO[e] && fMax <= HI[e])) cover = 1;
-  }
-  return cover;
+  int e0 = edgeCover(A.x, B.x, C.x, LO.x, HI.x, dxA, dxB, dyA, dyB);
+  if (e0 == 0) return 0;
+  int e1 = edgeCover(A.y, B.y, C.y, LO.y, HI.y, dxA, dxB, dyA, dyB);
+  if (e1 == 0) return 0;
+  int e2 = edgeCover(A.z, B.z, C.z, LO.z, HI.z, dxA, dxB, dyA, dyB);
+  if (e2 == 0) return 0;
+  return min(min(e0, e1), e2);
+}
+
+bool edgeInside(float A, float B, float C, float LO, float HI, float dx, float dy) {
+  precise float f = mulAdd(A, dx, mulAdd(B, dy, C));
+  return f >= LO && f <= HI;
 }
 
 // Whether piece `piece` (box `box`) covers pixel (x, y) as the cpu backend draws it, and its key
@@ -638,12 +706,10 @@ bool pieceAt(uint piece, ivec4 box, int x, int y, bool test, bool conservative, 
   int cover = test && oneBlock ? 1 : blockCover(box, A, B, C, LO, HI, x >> 3, y >> 3);
   precise float dx = float(x - box.x), dy = float(y - box.y);
   if (!oneBlock && cover == 0) return false;
-  if (test || cover != 2) {
-    for (int e = 0; e < 3; ++e) {
-      precise float f = mulAdd(A[e], dx, mulAdd(B[e], dy, C[e]));
-      if (!(f >= LO[e] && f <= HI[e])) return false;
-    }
-  }
+  if ((test || cover != 2) && !(edgeInside(A.x, B.x, C.x, LO.x, HI.x, dx, dy) &&
+                                 edgeInside(A.y, B.y, C.y, LO.y, HI.y, dx, dy) &&
+                                 edgeInside(A.z, B.z, C.z, LO.z, HI.z, dx, dy)))
+    return false;
   precise float z = mulAdd(A.w, dx, mulAdd(B.w, dy, C.w));
   key = min(max(z, LO.w), HI.w);
   return true;
@@ -662,10 +728,21 @@ void main() {
   bool oi = (ch.flags & kChainOrderIndependent) != 0u;
   uint planeSize = uint(ch.resolution) * uint(ch.resolution);
   uint pixel = uint(y) * uint(ch.resolution) + uint(x);
+  // This dispatch's part of the tile's list: `segment`'s run of segmentEntries entries.
+  uint begin = tileOffset[tile], end = tileOffset[tile + 1u];
+  uint from = begin + segment * segmentEntries;
+  if (from >= end) return;  // the tile was done by an earlier dispatch
+  uint to = end - from > segmentEntries ? from + segmentEntries : end;
+  uint lane = gl_LocalInvocationIndex;
+  uint heavy = end - begin > segmentEntries ? 768u * tileHeavy[tile] : 0u;
   // The pixel's stored depth (a value, not a key) and an order-independent pass' planes.
   float value = ch.clearValue, others = ch.clearValue;
   uint object = kNoObject;
-  if (inside && (ch.flags & kContinues) != 0u) {
+  if (segment != 0u) {
+    value = uintBitsToFloat(heavyState[heavy + lane]);
+    object = heavyState[heavy + 256u + lane];
+    others = uintBitsToFloat(heavyState[heavy + 512u + lane]);
+  } else if (inside && (ch.flags & kContinues) != 0u) {
     if (retainedIn[3u * planeSize + local] != 0u) {
       value = retainedInClear, others = retainedInClear;
     } else {
@@ -674,8 +751,7 @@ void main() {
     }
   }
   uint tested = 0u, written = 0u;
-  uint end = tileOffset[tile + 1u];
-  for (uint at = tileOffset[tile]; inside && at < end; ++at) {
+  for (uint at = from; inside && at < to; ++at) {
     uint chunk = tileList[at];
     Chunk k = chunks[chunk];
     if (x < k.rect.x || x > k.rect.z || y < k.rect.y || y > k.rect.w) continue;
@@ -729,6 +805,12 @@ void main() {
   }
   if (tested != 0u) atomicAdd(pixelsTested, tested);
   if (written != 0u) atomicAdd(pixelsWritten, written);
+  if (to != end) {  // the next dispatch goes on from here
+    heavyState[heavy + lane] = floatBitsToUint(value);
+    heavyState[heavy + 256u + lane] = object;
+    heavyState[heavy + 512u + lane] = floatBitsToUint(others);
+    return;
+  }
   // Every invocation has read the tile's flag before one marks it stored (the two buffers are one
   // when the chain goes on in the buffer it leaves).
   barrier();
@@ -752,7 +834,7 @@ std::string binCountShader(bool nativeFma) {
   return common("#define CHAINS\n#define PIECES\n#define CHUNKS\n#define BINS\n", nativeFma) + kChunkTiles + kBinCount;
 }
 std::string binScanShader(bool nativeFma) {
-  return common("#define BINS\n#define STATUS\n", nativeFma) + kBinScan;
+  return common("#define BINS\n#define STATUS\n#define HEAVY\n", nativeFma) + kBinScan;
 }
 std::string binFillShader(bool nativeFma) {
   return common("#define CHAINS\n#define PIECES\n#define CHUNKS\n#define BINS\n#define STATUS\n", nativeFma) +
@@ -764,7 +846,7 @@ std::string binSortShader(bool nativeFma) {
 std::string evaluateShader(bool nativeFma) {
   return common(
              "#define CHAINS\n#define PIECES\n#define CHUNKS\n#define BINS\n#define ANSWERS\n"
-             "#define STATUS\n#define RETAINED\n",
+             "#define STATUS\n#define RETAINED\n#define HEAVY\n",
              nativeFma) +
          kEvaluate;
 }

@@ -26,10 +26,12 @@ enum Binding : GLuint {
   kVertices = 0, kTriangles = 1, kMeshes = 2, kCommands = 3, kPasses = 4, kChains = 5,
   kListedBinding = 6, kBoxRows = 7, kPieceBoxes = 8, kPieceCoverage = 9, kChunks = 10,
   kTileCounts = 11, kTileOffsets = 12, kTileLists = 13, kAnswers = 14, kStatus = 15,
-  kRetainedIn = 16, kRetainedOut = 17, kUsedTiles = 18, kTileMasks = 19
+  kRetainedIn = 16, kRetainedOut = 17, kUsedTiles = 18, kTileMasks = 19, kTileHeavy = 20,
+  kHeavyStates = 21
 };
-constexpr GLint kStorageBlocksNeeded = 10;
-constexpr GLint kBindingsNeeded = 20;
+constexpr GLint kStorageBlocksNeeded = 15;  // the evaluation's
+constexpr GLint kBindingsNeeded = 22;
+constexpr std::size_t kHeavyStateBytes = 3 * kTile * kTile * sizeof(std::uint32_t);
 constexpr std::size_t kPieceCoverageBytes = 5 * 4 * sizeof(float);
 
 GLint glInteger(GLenum what) {
@@ -51,7 +53,7 @@ void checkCapabilities() {
   need(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, kBindingsNeeded,
        "GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS");
   need(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, 1024, "GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS");
-  need(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, 8192 + 64, "GL_MAX_COMPUTE_SHARED_MEMORY_SIZE");
+  need(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, 2048 * 12, "GL_MAX_COMPUTE_SHARED_MEMORY_SIZE");
 }
 
 GlProgramName computeProgram(const char* label, const std::string& source) {
@@ -114,6 +116,8 @@ GlComputeBackend::GlComputeBackend(HeadlessGlContext& context, const VisibilityO
     : context_(&context) {
   context.makeCurrent();
   checkCapabilities();
+  loopLimited_ = context.info().glRenderer.find("llvmpipe") != std::string::npos;
+  segmentEntries_ = loopLimited_ ? kLoopLimitedSegment : 0xffffffffu;
   nativeFma_ = mulAddRoundsOnce(true);
   if (!nativeFma_ && !mulAddRoundsOnce(false))
     throw RunError("gl-compute: neither this driver's fma() nor its double arithmetic gives a "
@@ -463,6 +467,7 @@ void GlComputeBackend::flush() {
     retainedClear_[out] = last.clearValue;
   }
   usedTiles_.reserve(std::size_t{tiles} * sizeof(std::uint32_t));
+  tileHeavy_.reserve(std::size_t{tiles} * sizeof(std::uint32_t));
 
   // Bindings and uniforms of every stage.
   for (const Section& s : sections) upload_.bind(s.binding, s.offset, s.bytes);
@@ -471,9 +476,9 @@ void GlComputeBackend::flush() {
   tileCounts_.bind(kTileCounts), tileOffsets_.bind(kTileOffsets);
   answerWords_.bind(kAnswers), status_.bind(kStatus);
   retained_[retainedIn_].bind(kRetainedIn), retained_[out].bind(kRetainedOut);
-  usedTiles_.bind(kUsedTiles);
+  usedTiles_.bind(kUsedTiles), tileHeavy_.bind(kTileHeavy);
   params_ = {static_cast<std::uint32_t>(commands_.size()), chunks, tiles,
-             static_cast<std::uint32_t>(chains_.size()), retainedClear_[retainedIn_]};
+             static_cast<std::uint32_t>(chains_.size()), retainedClear_[retainedIn_], 0};
   while (!runChain(chunks, tiles)) {
   }
   const auto* words = reinterpret_cast<const std::uint32_t*>(readBack_.data());
@@ -499,6 +504,9 @@ void GlComputeBackend::useProgram(const GlProgramName& program) const {
   glUniform1ui(glGetUniformLocation(p, "tileTotal"), params_.tileTotal);
   glUniform1ui(glGetUniformLocation(p, "chainCount"), params_.chainCount);
   glUniform1f(glGetUniformLocation(p, "retainedInClear"), params_.retainedInClear);
+  glUniform1ui(glGetUniformLocation(p, "segment"), params_.segment);
+  glUniform1ui(glGetUniformLocation(p, "segmentEntries"), segmentEntries_);
+  glUniform1ui(glGetUniformLocation(p, "loopLimited"), loopLimited_ ? 1u : 0u);
 }
 
 bool GlComputeBackend::runChain(std::uint32_t chunks, std::uint32_t tiles) {
@@ -507,15 +515,22 @@ bool GlComputeBackend::runChain(std::uint32_t chunks, std::uint32_t tiles) {
     throw RunError("gl-compute: the fetch's tile lists need " + std::to_string(listCapacity_) +
                    " entries, more than one storage block of this GL context holds (" +
                    std::to_string(most >> 20) + " MiB; fetches are not split yet)");
+  if (heavyCapacity_ * kHeavyStateBytes > most)
+    throw RunError("gl-compute: the fetch has " + std::to_string(heavyCapacity_) +
+                   " tiles evaluated in parts, more than one storage block of this GL context "
+                   "holds the states of (" + std::to_string(most >> 20) + " MiB)");
   tileLists_.reserve(listCapacity_ * sizeof(std::uint32_t));
   tileLists_.bind(kTileLists);
   tileMasks_.reserve(listCapacity_ * 2 * sizeof(std::uint32_t));
   tileMasks_.bind(kTileMasks);
+  heavyStates_.reserve(heavyCapacity_ * kHeavyStateBytes);
+  heavyStates_.bind(kHeavyStates);
   const std::uint32_t answerCount = issued_ - static_cast<std::uint32_t>(answers_.size());
   answerWords_.fill(0, std::max<std::size_t>(answerCount, 1) * 4, 1u);
   tileCounts_.fill(0, (tiles + 1) * 4, 0u);
   status_.fill(0, sizeof(GpuStatus), 0u);
   status_.fill(0, 4, static_cast<std::uint32_t>(listCapacity_));
+  status_.fill(kHeavyCapacityOffset, 4, static_cast<std::uint32_t>(heavyCapacity_));
 
   const auto stage = [&](const GlProgramName& program, std::uint32_t groups) {
     useProgram(program);
@@ -523,26 +538,67 @@ bool GlComputeBackend::runChain(std::uint32_t chunks, std::uint32_t tiles) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   };
   // A workgroup per tile with a chunk listed (binScan counts them).
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status_.name());
   const auto perUsedTile = [&](const GlProgramName& program) {
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, status_.name());
     useProgram(program);
     glDispatchComputeIndirect(static_cast<GLintptr>(kTileGroupsOffset));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   };
+  params_.segment = 0;
   glQueryCounter(timestamps_[0].get(), GL_TIMESTAMP);
   stage(setup_, chunks);
   glQueryCounter(timestamps_[1].get(), GL_TIMESTAMP);
-  const std::uint32_t chunkGroups = (chunks + 63) / 64;
-  stage(binCount_, chunkGroups);
+  stage(binCount_, chunks);  // a workgroup a chunk
   stage(binScan_, 1);
-  stage(binFill_, chunkGroups);
+  stage(binFill_, chunks);
   glQueryCounter(timestamps_[2].get(), GL_TIMESTAMP);
   perUsedTile(binSort_);
   glQueryCounter(timestamps_[3].get(), GL_TIMESTAMP);
   perUsedTile(evaluate_);
   glQueryCounter(timestamps_[4].get(), GL_TIMESTAMP);
-  glUseProgram(0);
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  GpuStatus status = readBack(answerCount);
+  std::array<GLuint64, 5> at{};
+  for (std::size_t i = 0; i < at.size(); ++i)
+    glGetQueryObjectui64v(timestamps_[i].get(), GL_QUERY_RESULT, &at[i]);
+  stages_.setupNs += at[1] - at[0];
+  stages_.binNs += at[2] - at[1];
+  stages_.sortNs += at[3] - at[2];
+  stages_.evaluateNs += at[4] - at[3];
+  ++stages_.fetches;
+  counters_.gpuDrawNs += at[4] - at[0];
+  if (status.truncated != 0)
+    throw RunError(std::string("gl-compute: this driver ends shader loops after 65,535 iterations "
+                               "(llvmpipe), and the fetch's ") +
+                   ((status.truncated & kCutScan) ? "tile count (binScan)" : "tile lists (binSort)") +
+                   " would need more; its answers would be wrong");
+  if (status.overflow != 0) {
+    if (status.entries > listCapacity_)
+      listCapacity_ = std::size_t{status.entries} + status.entries / 4 + 1024;
+    if (status.heavyTiles > heavyCapacity_)
+      heavyCapacity_ = std::size_t{status.heavyTiles} + status.heavyTiles / 4 + 16;
+    return false;
+  }
+  if (status.mostEntries > segmentEntries_) {
+    // Tiles with longer lists go on from their saved states, a dispatch per run of entries.
+    glQueryCounter(timestamps_[3].get(), GL_TIMESTAMP);
+    const std::uint32_t segments = (status.mostEntries + segmentEntries_ - 1) / segmentEntries_;
+    for (params_.segment = 1; params_.segment < segments; ++params_.segment)
+      perUsedTile(evaluate_);
+    glQueryCounter(timestamps_[4].get(), GL_TIMESTAMP);
+    status = readBack(answerCount);
+    glGetQueryObjectui64v(timestamps_[3].get(), GL_QUERY_RESULT, &at[3]);
+    glGetQueryObjectui64v(timestamps_[4].get(), GL_QUERY_RESULT, &at[4]);
+    stages_.evaluateNs += at[4] - at[3];
+    counters_.gpuDrawNs += at[4] - at[3];
+  }
+  counters_.pixelsTested += status.pixelsTested;
+  counters_.pixelsWritten += status.pixelsWritten;
+  return true;
+}
+
+GpuStatus GlComputeBackend::readBack(std::uint32_t answerCount) {
   // The answers and the status into the mapped read-back buffer, then one wait.
   const std::size_t answerBytes = std::size_t{answerCount} * 4;
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -565,22 +621,7 @@ bool GlComputeBackend::runChain(std::uint32_t chunks, std::uint32_t tiles) {
           .count());
   GpuStatus status;
   std::memcpy(&status, readBack_.data() + statusAt, sizeof status);
-  std::array<GLuint64, 5> at{};
-  for (std::size_t i = 0; i < at.size(); ++i)
-    glGetQueryObjectui64v(timestamps_[i].get(), GL_QUERY_RESULT, &at[i]);
-  stages_.setupNs += at[1] - at[0];
-  stages_.binNs += at[2] - at[1];
-  stages_.sortNs += at[3] - at[2];
-  stages_.evaluateNs += at[4] - at[3];
-  ++stages_.fetches;
-  counters_.gpuDrawNs += at[4] - at[0];
-  if (status.overflow != 0) {
-    listCapacity_ = std::size_t{status.entries} + status.entries / 4 + 1024;
-    return false;
-  }
-  counters_.pixelsTested += status.pixelsTested;
-  counters_.pixelsWritten += status.pixelsWritten;
-  return true;
+  return status;
 }
 
 float GlComputeBackend::storedDepth(int x, int y) {
@@ -611,3 +652,4 @@ void GlComputeBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
 }
 
 }  // namespace cdb
+

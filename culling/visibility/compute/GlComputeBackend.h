@@ -40,7 +40,7 @@ struct ComputeStageTimes {
 
 class GlComputeBackend final : public VisibilityBackend {
  public:
-  static constexpr int kMaxResolution = 16384;
+  static constexpr int kMaxResolution = compute::kMaxTileColumns * compute::kTile;  // 16384
 
   // The backend's GL objects live in `context`, which must outlive it. Throws RunError naming
   // what the context lacks (compute shaders with doubles, storage blocks, workgroup size).
@@ -97,7 +97,10 @@ class GlComputeBackend final : public VisibilityBackend {
   struct RunParameters {
     std::uint32_t commandCount = 0, chunkCount = 0, tileTotal = 0, chainCount = 0;
     float retainedInClear = 1.f;
+    std::uint32_t segment = 0;  // the evaluation dispatch's run of each tile's list
   };
+  // Copies the answers and the status into the read-back buffer and waits for the GPU.
+  compute::GpuStatus readBack(std::uint32_t answerCount);
   RunParameters params_;
 
   HeadlessGlContext* context_;
@@ -106,6 +109,10 @@ class GlComputeBackend final : public VisibilityBackend {
   ComputeStageTimes stages_;
   GlProgramName setup_, binCount_, binScan_, binFill_, binSort_, evaluate_;
   bool nativeFma_ = true;  // the driver's fma() rounds once (ComputeShaders.h)
+  // The driver ends shader loops after 65,535 iterations (llvmpipe; ComputeLayout.h), and so the
+  // entries of a tile's list one evaluation dispatch takes.
+  bool loopLimited_ = false;
+  std::uint32_t segmentEntries_ = 0;
 
   // The scene.
   const SceneGeometry* scene_ = nullptr;
@@ -144,12 +151,13 @@ class GlComputeBackend final : public VisibilityBackend {
   compute::MappedBuffer upload_{compute::MappedBuffer::Access::Write};
   compute::MappedBuffer readBack_{compute::MappedBuffer::Access::Read};
   compute::DeviceBuffer pieceBoxes_, pieceCoverage_, chunks_, tileCounts_, tileOffsets_,
-      tileLists_, tileMasks_, usedTiles_, answerWords_, status_;
+      tileLists_, tileMasks_, usedTiles_, answerWords_, status_, tileHeavy_, heavyStates_;
   // Two buffers a chain's depths are kept in (ComputeShaders: RetainedIn, RetainedOut), each with
   // the value its uniform tiles hold.
   std::array<compute::DeviceBuffer, 2> retained_;
   std::array<float, 2> retainedClear_ = {1.f, 1.f};
   std::size_t listCapacity_ = 1 << 16;
+  std::size_t heavyCapacity_ = 64;  // heavy tiles' states heavyStates_ holds
   std::size_t alignment_ = 256;
   std::array<GlQueryName, 5> timestamps_;
   std::vector<compute::GpuChain> chains_;
