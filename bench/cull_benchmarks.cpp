@@ -17,7 +17,8 @@
 // ours: where a frame's time goes. Counters per frame: draws, fetches
 // (read-backs), fetch_wait_ms (the CPU waiting for answers: the GPU finishing what was issued, then
 // the copy), gpu_draw_ms (the GPU's time in the draws) and cpu_ms (the rest: the strategy and the
-// issuing of draws, cull time minus the waits).
+// issuing of draws, cull time minus the waits); on gl-compute also the GPU time of each stage of
+// its chain (gpu_setup_ms, gpu_bin_ms, gpu_sort_ms, gpu_evaluate_ms).
 //
 // Set-up per run of the benchmark function, untimed: the backend, its warm-up at the resolution
 // (shader variants, framebuffer), the detector's attach (hierarchies) and one detection of the
@@ -120,6 +121,12 @@ void cullMeasuredFrame(benchmark::State& state, RecordedFrames& frames,
     state.counters["fetch_wait_ms"] = perIteration(waitMs);
     state.counters["gpu_draw_ms"] = perIteration(double(total.visibility.gpuDrawNs) / 1e6);
     state.counters["cpu_ms"] = perIteration(cullMs - waitMs);
+    if (total.visibility.gpuEvaluateNs > 0) {  // gl-compute's stages
+      state.counters["gpu_setup_ms"] = perIteration(double(total.visibility.gpuSetupNs) / 1e6);
+      state.counters["gpu_bin_ms"] = perIteration(double(total.visibility.gpuBinNs) / 1e6);
+      state.counters["gpu_sort_ms"] = perIteration(double(total.visibility.gpuSortNs) / 1e6);
+      state.counters["gpu_evaluate_ms"] = perIteration(double(total.visibility.gpuEvaluateNs) / 1e6);
+    }
   }
 }
 

@@ -103,6 +103,12 @@ struct VisibilityCounters {
   // draws. The rest of a cull's time is the CPU's: the strategy and the issuing of draws.
   std::uint64_t fetchWaitNs = 0;
   std::uint64_t gpuDrawNs = 0;
+  // gl-compute: the GPU time of each stage of its chain of dispatches (always timed; their sum is
+  // its gpuDrawNs): pieces set up, binned to tiles, the tiles' lists sorted, the tiles evaluated.
+  std::uint64_t gpuSetupNs = 0;
+  std::uint64_t gpuBinNs = 0;
+  std::uint64_t gpuSortNs = 0;
+  std::uint64_t gpuEvaluateNs = 0;
 
   VisibilityCounters& operator+=(const VisibilityCounters& o) {
     queries += o.queries; draws += o.draws; trianglesDrawn += o.trianglesDrawn;
@@ -112,6 +118,8 @@ struct VisibilityCounters {
     tileTestsSkipped += o.tileTestsSkipped; tileWrites += o.tileWrites;
     tileWritesRasterised += o.tileWritesRasterised;
     fetchWaitNs += o.fetchWaitNs; gpuDrawNs += o.gpuDrawNs;
+    gpuSetupNs += o.gpuSetupNs; gpuBinNs += o.gpuBinNs; gpuSortNs += o.gpuSortNs;
+    gpuEvaluateNs += o.gpuEvaluateNs;
     return *this;
   }
   friend VisibilityCounters operator-(VisibilityCounters a, const VisibilityCounters& b) {
@@ -122,6 +130,8 @@ struct VisibilityCounters {
     a.tileTestsSkipped -= b.tileTestsSkipped; a.tileWrites -= b.tileWrites;
     a.tileWritesRasterised -= b.tileWritesRasterised;
     a.fetchWaitNs -= b.fetchWaitNs; a.gpuDrawNs -= b.gpuDrawNs;
+    a.gpuSetupNs -= b.gpuSetupNs; a.gpuBinNs -= b.gpuBinNs; a.gpuSortNs -= b.gpuSortNs;
+    a.gpuEvaluateNs -= b.gpuEvaluateNs;
     return a;
   }
 };

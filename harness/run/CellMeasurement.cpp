@@ -43,6 +43,13 @@ FrameRecord frameRecordOf(const Cell& cell, const CellFrames& frames, const std:
   r.tileTestsSkipped = counters.visibility.tileTestsSkipped;
   r.tileWrites = counters.visibility.tileWrites;
   r.tileWritesDrawn = counters.visibility.tileWritesRasterised;
+  const auto ms = [](std::uint64_t ns) { return static_cast<double>(ns) / 1e6; };
+  r.fetchWaitMs = ms(counters.visibility.fetchWaitNs);
+  r.gpuMs = ms(counters.visibility.gpuDrawNs);
+  r.gpuSetupMs = ms(counters.visibility.gpuSetupNs);
+  r.gpuBinMs = ms(counters.visibility.gpuBinNs);
+  r.gpuSortMs = ms(counters.visibility.gpuSortNs);
+  r.gpuEvaluateMs = ms(counters.visibility.gpuEvaluateNs);
   return r;
 }
 

@@ -43,6 +43,12 @@ struct FrameRecord {
   std::uint64_t tileTestsSkipped = 0;
   std::uint64_t tileWrites = 0;
   std::uint64_t tileWritesDrawn = 0;
+  double fetchWaitMs = 0;
+  double gpuMs = 0;
+  double gpuSetupMs = 0;
+  double gpuBinMs = 0;
+  double gpuSortMs = 0;
+  double gpuEvaluateMs = 0;
 };
 
 // The member a column holds, of one of the types a column can have.
@@ -103,6 +109,19 @@ inline constexpr std::array kFrameColumns = {
                 "depth writes of a piece in a screen tile it may reach (cpu; 0 elsewhere)"},
     FrameColumn{"tile_writes_drawn", &FrameRecord::tileWritesDrawn,
                 "of tile_writes, rasterised (some test in the tile read them); the rest never were"},
+    FrameColumn{"fetch_wait_ms", &FrameRecord::fetchWaitMs,
+                "of cull_ms, the CPU waiting for a GL backend's answers (0 for cpu)"},
+    FrameColumn{"gpu_ms", &FrameRecord::gpuMs,
+                "the GPU's time in the backend's work, where it times it (gl-compute always; "
+                "0 elsewhere in runs)"},
+    FrameColumn{"gpu_setup_ms", &FrameRecord::gpuSetupMs,
+                "of gpu_ms, gl-compute's set-up of pieces (0 elsewhere)"},
+    FrameColumn{"gpu_bin_ms", &FrameRecord::gpuBinMs,
+                "of gpu_ms, gl-compute's binning to tiles (0 elsewhere)"},
+    FrameColumn{"gpu_sort_ms", &FrameRecord::gpuSortMs,
+                "of gpu_ms, gl-compute's sorting of tile lists into issue order (0 elsewhere)"},
+    FrameColumn{"gpu_evaluate_ms", &FrameRecord::gpuEvaluateMs,
+                "of gpu_ms, gl-compute's evaluation of tiles (0 elsewhere)"},
 };
 
 // How a column's text reads: "string", "int" (signed or not) or "double".

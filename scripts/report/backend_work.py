@@ -3,7 +3,8 @@
 cullide_oi's few), pixels rasterised by tests and by writes, and, for a backend that evaluates screen tiles on demand (cpu), how many tests of
 a piece in a tile were decided by bounds or skipped (another tile had found the piece occluded), and how
 many depth writes were ever rasterised. These follow from the scene, the strategy and the resolution,
-not from the machine's speed; they say where the time can go."""
+not from the machine's speed; they say where the time can go. Where the backend timed its GPU work (gl-compute
+always), a second table gives the GPU time of each stage of its chain and the CPU's wait for the answers."""
 
 from collections import defaultdict
 
@@ -11,6 +12,8 @@ from .runs import strategy_order
 
 COUNTERS = ("draws", "queries", "pixels_written", "pixels_tested", "tile_tests", "tile_tests_by_bounds", "tile_tests_skipped",
             "tile_writes", "tile_writes_drawn")
+# Times per frame where the backend measured them (results written before these columns lack them: 0).
+GPU_TIMES = ("cull_ms", "fetch_wait_ms", "gpu_ms", "gpu_setup_ms", "gpu_bin_ms", "gpu_sort_ms", "gpu_evaluate_ms")
 
 
 def work_rows(run, column_of):
@@ -23,7 +26,7 @@ def work_rows(run, column_of):
             continue
         key = (f["strategy"], column_of(f))
         frames[key] += 1
-        for c in COUNTERS:
+        for c in COUNTERS + GPU_TIMES:
             value = f.get(c)
             sums[key][c] += value if isinstance(value, (int, float)) else 0
     return {key: ({c: total / frames[key] for c, total in sums[key].items()}, frames[key]) for key in sums}
@@ -68,4 +71,20 @@ def work_markdown(run, layout, column):
     if tiles:
         out += ["", "A tile test or write is one piece of a draw (a chunk of triangles, a box) in one screen tile "
                 "it may reach. A write not rasterised was never read by a test that needed it."]
+    out.append("")
+    return out + _gpu_markdown(at)
+
+
+def _gpu_markdown(at):
+    """The GPU's time per frame, stage by stage, for the strategies whose backend timed it."""
+    timed = {s: v for s, (v, _) in at.items() if v.get("gpu_ms")}
+    if not timed:
+        return []
+    out = ["GPU time per frame where the backend measured it (gl-compute's chain of dispatches, from "
+           "`GL_TIMESTAMP` queries), beside the whole cull and the CPU's wait for the answers, mean ms:", "",
+           "| strategy | cull | fetch wait | GPU | set-up | binning | sort | evaluation |",
+           "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for s in strategy_order(timed):
+        v = timed[s]
+        out.append(f"| {s} | " + " | ".join(f"{v[c]:.3f}" for c in GPU_TIMES) + " |")
     return out + [""]

@@ -21,7 +21,9 @@ FRAME_COLUMNS = (("environment", "string"), ("strategy", "string"), ("visibility
                  ("false_negatives", "int"), ("false_positives", "int"), ("culling_misses", "int"),
                  ("queries", "int"), ("draws", "int"), ("triangles_drawn", "int"), ("pixels_tested", "int"),
                  ("pixels_written", "int"), ("tile_tests", "int"), ("tile_tests_by_bounds", "int"),
-                 ("tile_tests_skipped", "int"), ("tile_writes", "int"), ("tile_writes_drawn", "int"))
+                 ("tile_tests_skipped", "int"), ("tile_writes", "int"), ("tile_writes_drawn", "int"),
+                 ("fetch_wait_ms", "double"), ("gpu_ms", "double"), ("gpu_setup_ms", "double"),
+                 ("gpu_bin_ms", "double"), ("gpu_sort_ms", "double"), ("gpu_evaluate_ms", "double"))
 FRAME_INTS = tuple(name for name, kind in FRAME_COLUMNS if kind == "int")
 FRAME_TIMES = tuple(name for name, kind in FRAME_COLUMNS if kind == "double")
 # What the report cannot do without; results written before a column existed lack it.

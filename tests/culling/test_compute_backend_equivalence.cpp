@@ -127,7 +127,7 @@ TEST_P(ComputeBackendEquivalence, SameAnswerToEveryQuery) {
   std::printf("%s frame %d, %s, %d px, %s: %zu queries in %zu fetches equal (%zu not fully "
               "visible); GPU stages %.1f ms\n",
               f.name, f.frame, strategyName.c_str(), resolution, conservative ? "conservative" : "raw",
-              compared, fetch, occluded, compute.stageTimes().totalNs() / 1e6);
+              compared, fetch, occluded, compute.counters().gpuDrawNs / 1e6);
 }
 
 // Every case with CDBENCH_FULL_EQUIVALENCE=1 in the environment; otherwise (CI's budget on two

@@ -70,7 +70,7 @@ constexpr const char* kHeader =
     "pcs_size,sets,pcs_triangles,pairs_tested,triangle_tests,colliding_pairs,truth_pairs,"
     "false_negatives,false_positives,culling_misses,queries,draws,triangles_drawn,"
     "pixels_tested,pixels_written,tile_tests,tile_tests_by_bounds,tile_tests_skipped,tile_writes,"
-    "tile_writes_drawn\n";
+    "tile_writes_drawn,fetch_wait_ms,gpu_ms,gpu_setup_ms,gpu_bin_ms,gpu_sort_ms,gpu_evaluate_ms\n";
 
 TEST(FrameCsv, HeaderIsTheOneOfTheResultsAlreadyWritten) {
   std::ostringstream out;
@@ -84,7 +84,7 @@ TEST(FrameCsv, ReadsEachColumnIntoItsMember) {
     std::ofstream out(file);
     out << kHeader
         << "env9,cis,cpu,1,2,3,4,5.5,6.5,7.5,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23,24,25,"
-           "26,27\n";
+           "26,27,28.5,29.5,30.5,31.5,32.5,33.5\n";
   }
   const auto rows = readFrameCsv(file);
   ASSERT_EQ(rows.size(), 1u);
@@ -118,7 +118,13 @@ TEST(FrameCsv, ReadsEachColumnIntoItsMember) {
                              .tileTestsByBounds = 24,
                              .tileTestsSkipped = 25,
                              .tileWrites = 26,
-                             .tileWritesDrawn = 27};
+                             .tileWritesDrawn = 27,
+                             .fetchWaitMs = 28.5,
+                             .gpuMs = 29.5,
+                             .gpuSetupMs = 30.5,
+                             .gpuBinMs = 31.5,
+                             .gpuSortMs = 32.5,
+                             .gpuEvaluateMs = 33.5};
   for (const auto& c : kFrameColumns)
     std::visit([&](auto member) { EXPECT_EQ(rows[0].*member, expected.*member) << c.name; },
                c.field);

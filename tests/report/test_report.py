@@ -805,6 +805,7 @@ class BackendWork(unittest.TestCase):
                                   tile_tests_by_bounds=150, tile_tests_skipped=30, tile_writes=400,
                                   tile_writes_drawn=40))
             rows.append(frame_row("env1", "fcl", 0, 50, 0, frame, 1.0, 0, backend="cpu"))
+        self.rows = rows
         write_run(self.dir / "env1", "env1", rows, backend="cpu")
         run_report(self.dir)
         self.report = (self.dir / "REPORT.md").read_text()
@@ -819,3 +820,17 @@ class BackendWork(unittest.TestCase):
         # ours' draws are the mean of its frames' (90 and 110).
         self.assertIn("| ours | 100 | 50 | 0.50M | 20,000 | 300 | 50% | 10% | 400 | 10% |", section)
         self.assertNotIn("| fcl |", section)
+        self.assertNotIn("GPU time per frame", section, "no backend here timed its GPU")
+
+    def test_gpu_stages_where_the_backend_timed_them(self):
+        rows = []
+        for frame in range(2):
+            rows.append(frame_row("env1", "ours", 800, 50, 0, frame, 5.0, 2, backend="gl-compute", draws=90,
+                                  queries=50, cull_ms=2.0 + frame, fetch_wait_ms=1.5, gpu_ms=1.0 + frame,
+                                  gpu_setup_ms=0.1, gpu_bin_ms=0.2, gpu_sort_ms=0.05, gpu_evaluate_ms=0.65 + frame))
+        folder = Path(self.tmp.name) / "gpu"
+        write_run(folder / "env1", "env1", rows, backend="gl-compute")
+        run_report(folder)
+        report = (folder / "REPORT.md").read_text()
+        section = report[report.index("### Work of the visibility backend"):]
+        self.assertIn("| ours | 2.500 | 1.500 | 1.500 | 0.100 | 0.200 | 0.050 | 1.150 |", section)

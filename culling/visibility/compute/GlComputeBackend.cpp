@@ -562,11 +562,10 @@ bool GlComputeBackend::runChain(std::uint32_t chunks, std::uint32_t tiles) {
   std::array<GLuint64, 5> at{};
   for (std::size_t i = 0; i < at.size(); ++i)
     glGetQueryObjectui64v(timestamps_[i].get(), GL_QUERY_RESULT, &at[i]);
-  stages_.setupNs += at[1] - at[0];
-  stages_.binNs += at[2] - at[1];
-  stages_.sortNs += at[3] - at[2];
-  stages_.evaluateNs += at[4] - at[3];
-  ++stages_.fetches;
+  counters_.gpuSetupNs += at[1] - at[0];
+  counters_.gpuBinNs += at[2] - at[1];
+  counters_.gpuSortNs += at[3] - at[2];
+  counters_.gpuEvaluateNs += at[4] - at[3];
   counters_.gpuDrawNs += at[4] - at[0];
   if (status.truncated != 0)
     throw RunError(std::string("gl-compute: this driver ends shader loops after 65,535 iterations "
@@ -590,7 +589,7 @@ bool GlComputeBackend::runChain(std::uint32_t chunks, std::uint32_t tiles) {
     status = readBack(answerCount);
     glGetQueryObjectui64v(timestamps_[3].get(), GL_QUERY_RESULT, &at[3]);
     glGetQueryObjectui64v(timestamps_[4].get(), GL_QUERY_RESULT, &at[4]);
-    stages_.evaluateNs += at[4] - at[3];
+    counters_.gpuEvaluateNs += at[4] - at[3];
     counters_.gpuDrawNs += at[4] - at[3];
   }
   counters_.pixelsTested += status.pixelsTested;

@@ -12,7 +12,7 @@
 // per draw or piece, no CPU work per triangle (a box's matrix is made on the CPU, as the cpu
 // backend makes it). Passes sharing a depth buffer form a chain; the last chain's buffer is kept
 // for draws that go on in it after the fetch. The GPU time of each stage is read from timestamp
-// queries (stageTimes()).
+// queries (VisibilityCounters::gpuSetupNs ... gpuEvaluateNs).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -27,16 +27,6 @@
 namespace cdb {
 
 class HeadlessGlContext;
-
-// GPU time of the stages of the fetches since the last reset, in nanoseconds.
-struct ComputeStageTimes {
-  std::uint64_t setupNs = 0;     // pieces set up, chunks bounded
-  std::uint64_t binNs = 0;       // counted, offsets, listed
-  std::uint64_t sortNs = 0;      // lists in issue order
-  std::uint64_t evaluateNs = 0;  // tiles evaluated
-  std::uint64_t fetches = 0;     // chains run (a fetch whose lists overflowed runs twice)
-  [[nodiscard]] std::uint64_t totalNs() const { return setupNs + binNs + sortNs + evaluateNs; }
-};
 
 class GlComputeBackend final : public VisibilityBackend {
  public:
@@ -73,11 +63,7 @@ class GlComputeBackend final : public VisibilityBackend {
   void fetchResults(std::vector<std::uint8_t>& fullyVisible) override;
 
   [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
-  void resetCounters() override {
-    counters_ = {};
-    stages_ = {};
-  }
-  [[nodiscard]] const ComputeStageTimes& stageTimes() const { return stages_; }
+  void resetCounters() override { counters_ = {}; }
   // The stored depth the buffer the last fetch kept holds at pixel (x, y) (draws still recorded
   // are run first); for tests.
   [[nodiscard]] float storedDepth(int x, int y);
@@ -106,7 +92,6 @@ class GlComputeBackend final : public VisibilityBackend {
   HeadlessGlContext* context_;
   VisibilityOptions options_;
   VisibilityCounters counters_;
-  ComputeStageTimes stages_;
   GlProgramName setup_, binCount_, binScan_, binFill_, binSort_, evaluate_;
   bool nativeFma_ = true;  // the driver's fma() rounds once (ComputeShaders.h)
   // The driver ends shader loops after 65,535 iterations (llvmpipe; ComputeLayout.h), and so the
