@@ -216,6 +216,21 @@ TEST_P(OcclusionSemantics, BatchesAnswerEachPieceAgainstWhatWasWrittenBefore) {
   EXPECT_EQ(backend_->counters().queries, 11u);
 }
 
+// `copies` squares of half size h centred on (cx, cy), the first at z, each next dz farther, as
+// one mesh.
+Mesh squareStack(int copies, float cx, float cy, float z, float h, float dz) {
+  Mesh stack;
+  stack.name = "square stack";
+  for (int copy = 0; copy < copies; ++copy) {
+    const Mesh square = squareMesh(cx, cy, z + dz * static_cast<float>(copy), h);
+    const auto first = static_cast<std::uint32_t>(stack.vertices.size());
+    stack.vertices.insert(stack.vertices.end(), square.vertices.begin(), square.vertices.end());
+    for (const Triangle& t : square.triangles)
+      stack.triangles.push_back({first + t[0], first + t[1], first + t[2]});
+  }
+  return stack;
+}
+
 // Thousands of draws over the same pixels in one pass keep their issue order: tests issued before
 // a write do not see it, tests after it do. The tested object is 64 copies of B's square, so that
 // each of its draws reaches every pixel 128 times: over 300,000 piece evaluations a pixel.
@@ -224,14 +239,7 @@ TEST_P(OcclusionSemantics, BatchesAnswerEachPieceAgainstWhatWasWrittenBefore) {
 // invocation's loops after 65,535 iterations, so there the tiles are evaluated in several
 // dispatches.)
 TEST_P(OcclusionSemantics, ThousandsOfDrawsOverOnePixelKeepTheirOrder) {
-  Mesh stack;
-  stack.name = "64 squares";
-  for (int copy = 0; copy < 64; ++copy) {
-    const Mesh square = squareMesh(0, 0, 2, 1);
-    const auto first = static_cast<std::uint32_t>(stack.vertices.size());
-    stack.vertices.insert(stack.vertices.end(), square.vertices.begin(), square.vertices.end());
-    for (Triangle t : square.triangles) stack.triangles.push_back({first + t[0], first + t[1], first + t[2]});
-  }
+  const Mesh stack = squareStack(64, 0, 0, 2, 1, 0);
   scene_ = test::sceneOf({squareMesh(0, 0, 0, 1), stack, squareMesh(0, 0, -2, 1), squareMesh(5, 0, 0, 1)});
   backend_->attachScene(scene_);
   backend_->setPoses(test::identityPoses(scene_.objectCount()));
@@ -260,14 +268,7 @@ TEST_P(OcclusionSemantics, ThousandsOfDrawsOverOnePixelKeepTheirOrder) {
 // every corner. (gl-compute bins each chunk of 64 pieces to the 2,500 tiles it reaches: a loop
 // llvmpipe would have cut short had one invocation walked them all.)
 TEST_P(OcclusionSemantics, AWriteCoveringTheImageHidesEveryCorner) {
-  Mesh wall;
-  wall.name = "64 walls";
-  for (int copy = 0; copy < 64; ++copy) {
-    const Mesh square = squareMesh(2.5f, 0, 0.01f * static_cast<float>(copy), 20);
-    const auto first = static_cast<std::uint32_t>(wall.vertices.size());
-    wall.vertices.insert(wall.vertices.end(), square.vertices.begin(), square.vertices.end());
-    for (Triangle t : square.triangles) wall.triangles.push_back({first + t[0], first + t[1], first + t[2]});
-  }
+  const Mesh wall = squareStack(64, 2.5f, 0, 0, 20, 0.01f);
   scene_ = test::sceneOf({wall, squareMesh(-1.6f, -1.6f, 2, 0.3f), squareMesh(6.6f, 1.6f, 2, 0.3f),
                           squareMesh(-1.6f, 1.6f, 2, 0.3f), squareMesh(6.6f, -1.6f, 2, 0.3f),
                           squareMesh(2.5f, 0, -2, 0.3f)});
