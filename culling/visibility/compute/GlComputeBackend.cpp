@@ -128,6 +128,13 @@ GlComputeBackend::GlComputeBackend(HeadlessGlContext& context, const VisibilityO
   binFill_ = computeProgram("gl-compute binFill", binFillShader(nativeFma_));
   binSort_ = computeProgram("gl-compute binSort", binSortShader(nativeFma_));
   evaluate_ = computeProgram("gl-compute evaluate", evaluateShader(nativeFma_));
+  for (const GlProgramName* stage : {&setup_, &binCount_, &binScan_, &binFill_, &binSort_, &evaluate_}) {
+    StageUniforms& u = uniforms_.emplace_back();
+    u.program = stage->get();
+    const char* names[] = {"commandCount", "chunkCount",     "tileTotal",      "chainCount",
+                           "retainedInClear", "segment",     "segmentEntries", "loopLimited"};
+    for (std::size_t i = 0; i < u.at.size(); ++i) u.at[i] = glGetUniformLocation(u.program, names[i]);
+  }
   alignment_ = std::max<std::size_t>(bindAlignment(), alignof(GpuCommand));
   for (GlQueryName& q : timestamps_) {
     GLuint name = 0;
@@ -498,15 +505,17 @@ void GlComputeBackend::useProgram(const GlProgramName& program) const {
   // Set on the bound program, before each dispatch: llvmpipe (Mesa 22.3) ran a compute program
   // with the values an earlier fetch gave it by glProgramUniform while it was not bound.
   glUseProgram(program.get());
-  const GLuint p = program.get();
-  glUniform1ui(glGetUniformLocation(p, "commandCount"), params_.commandCount);
-  glUniform1ui(glGetUniformLocation(p, "chunkCount"), params_.chunkCount);
-  glUniform1ui(glGetUniformLocation(p, "tileTotal"), params_.tileTotal);
-  glUniform1ui(glGetUniformLocation(p, "chainCount"), params_.chainCount);
-  glUniform1f(glGetUniformLocation(p, "retainedInClear"), params_.retainedInClear);
-  glUniform1ui(glGetUniformLocation(p, "segment"), params_.segment);
-  glUniform1ui(glGetUniformLocation(p, "segmentEntries"), segmentEntries_);
-  glUniform1ui(glGetUniformLocation(p, "loopLimited"), loopLimited_ ? 1u : 0u);
+  const auto found = std::find_if(uniforms_.begin(), uniforms_.end(),
+                                  [&](const StageUniforms& u) { return u.program == program.get(); });
+  const StageUniforms& u = *found;
+  glUniform1ui(u.at[0], params_.commandCount);
+  glUniform1ui(u.at[1], params_.chunkCount);
+  glUniform1ui(u.at[2], params_.tileTotal);
+  glUniform1ui(u.at[3], params_.chainCount);
+  glUniform1f(u.at[4], params_.retainedInClear);
+  glUniform1ui(u.at[5], params_.segment);
+  glUniform1ui(u.at[6], segmentEntries_);
+  glUniform1ui(u.at[7], loopLimited_ ? 1u : 0u);
 }
 
 bool GlComputeBackend::runChain(std::uint32_t chunks, std::uint32_t tiles) {

@@ -80,6 +80,13 @@ class GlComputeBackend final : public VisibilityBackend {
   bool runChain(std::uint32_t chunks, std::uint32_t tiles);
   // Binds a stage's program with this run's parameters.
   void useProgram(const GlProgramName& program) const;
+  // Each stage's uniform locations (-1 where it has none), in RunParameters' order, then
+  // segmentEntries and loopLimited; looked up once.
+  struct StageUniforms {
+    GLuint program = 0;
+    std::array<GLint, 8> at{};
+  };
+  std::vector<StageUniforms> uniforms_;
   struct RunParameters {
     std::uint32_t commandCount = 0, chunkCount = 0, tileTotal = 0, chainCount = 0;
     float retainedInClear = 1.f;
