@@ -19,42 +19,15 @@
 #include "culling/visibility/cpu/CpuRasterBackend.h"
 #include "culling/visibility/cpu/CpuRasteriser.h"
 #include "harness/check/CheckScenes.h"
+#include "tests/culling/RecordedCheckFrames.h"
 #include "harness/measure/BackendWarmUp.h"
 #include "render/HeadlessGlContext.h"
 
 namespace cdb {
 namespace {
 
-struct RecordedFrame {
-  const char* name;
-  CheckScene scene;
-  int frame;
-};
-
-const RecordedFrame kRecordedFrames[] = {
-    {"env3", {"env3.yaml", "tori", 50, 1, 47}, 46},
-    {"env1", {"env1.yaml", "tori", 10, 1, 61}, 60},
-    {"env2", {"env2.yaml", "dragons", 2, 1, 36}, 35},
-};
-
-class ComputeShared {
- public:
-  static ComputeShared& get() {
-    static ComputeShared s;
-    return s;
-  }
-  const RecordedScene* scene(const RecordedFrame& f) {
-    try {
-      return &scenes.get(f.scene);
-    } catch (const InputError&) {
-      return nullptr;
-    }
-  }
-  HeadlessGlContext context{GlPlatform::Auto};
-  CheckScenes scenes{std::filesystem::path(CDBENCH_SOURCE_DIR) / "configs",
-                     {(std::filesystem::path(CDBENCH_SOURCE_DIR) / ".." / "shared" / "meshes")
-                          .string()}};
-};
+using test::RecordedCheckScenes;
+const auto& kRecordedFrames = test::kRecordedCheckFrames;
 
 // The cpu backend's SIMD loops fuse their multiply-adds where the machine has FMA (Highway's
 // MulAdd); gl-compute fuses them too (fma()). Without FMA the cpu backend rounds twice.
@@ -71,8 +44,8 @@ class ComputeBackendEquivalence : public ::testing::TestWithParam<ComputeCase> {
 TEST_P(ComputeBackendEquivalence, SameAnswerToEveryQuery) {
   const auto& [frameIndex, strategyName, resolution, conservative] = GetParam();
   if (!cpuLoopsFuse()) GTEST_SKIP() << "the cpu backend's loops run on " << rasteriserTarget();
-  const RecordedFrame& f = kRecordedFrames[frameIndex];
-  ComputeShared& shared = ComputeShared::get();
+  const test::RecordedCheckFrame& f = kRecordedFrames[frameIndex];
+  RecordedCheckScenes& shared = RecordedCheckScenes::get();
   const RecordedScene* recorded = shared.scene(f);
   if (recorded == nullptr) GTEST_SKIP() << f.scene.label() << ": a mesh is not on the asset path";
   const auto poses = recorded->recording.frame(static_cast<std::uint32_t>(f.frame));

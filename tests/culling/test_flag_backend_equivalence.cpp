@@ -24,47 +24,18 @@
 #include "culling/visibility/GlOcclusionQueryBackend.h"
 #include "culling/visibility/RecordingBackend.h"
 #include "harness/check/CheckScenes.h"
+#include "tests/culling/RecordedCheckFrames.h"
 #include "render/Gl.h"
 #include "render/HeadlessGlContext.h"
 
 namespace cdb {
 namespace {
 
-struct Frame {
-  const char* name;
-  CheckScene scene;
-  int frame;
-};
-
-// env3 at 50 tori and env1 at 10 tori: one contact each. env2 at 2 dragons, frame 35: a dragon
-// landing on a slope, which CULLIDE tests triangle by triangle (~220k-250k occlusion queries per
-// resolution on gl-queries, ~4 s on llvmpipe), at 64 and 256 px only: 800 px adds ~10 s to the
-// suite's ~35 s in Release, and env1 and env3 cover 800 px.
-const Frame kFrames[] = {
-    {"env3", {"env3.yaml", "tori", 50, 1, 47}, 46},
-    {"env1", {"env1.yaml", "tori", 10, 1, 61}, 60},
-    {"env2", {"env2.yaml", "dragons", 2, 1, 36}, 35},
-};
-
-class Shared {
- public:
-  static Shared& get() {
-    static Shared s;
-    return s;
-  }
-  // Null when the scene's meshes are not on the asset path (the dragon).
-  const RecordedScene* scene(const Frame& f) {
-    try {
-      return &scenes.get(f.scene);
-    } catch (const InputError&) {
-      return nullptr;
-    }
-  }
-  HeadlessGlContext context{GlPlatform::Auto};
-  CheckScenes scenes{std::filesystem::path(CDBENCH_SOURCE_DIR) / "configs",
-                     {(std::filesystem::path(CDBENCH_SOURCE_DIR) / ".." / "shared" / "meshes")
-                          .string()}};
-};
+using test::RecordedCheckScenes;
+using Frame = test::RecordedCheckFrame;
+// At 64 and 256 px only on env2 (~220k-250k occlusion queries per resolution on gl-queries, ~4 s
+// on llvmpipe): 800 px adds ~10 s to the suite's ~35 s in Release, and env1 and env3 cover 800 px.
+const auto& kFrames = test::kRecordedCheckFrames;
 
 // Answers of each query call (a batch is one call) among `ops`, located by fetch and index.
 struct QueryCall {
@@ -122,7 +93,7 @@ class FlagBackendEquivalence : public ::testing::TestWithParam<RecordedCase> {};
 TEST_P(FlagBackendEquivalence, SameAnswerToEveryQuery) {
   const auto& [frameIndex, strategyName, resolution] = GetParam();
   const Frame& f = kFrames[frameIndex];
-  Shared& shared = Shared::get();
+  RecordedCheckScenes& shared = RecordedCheckScenes::get();
   const RecordedScene* recorded = shared.scene(f);
   if (recorded == nullptr) GTEST_SKIP() << f.scene.label() << ": a mesh is not on the asset path";
   const auto poses = recorded->recording.frame(static_cast<std::uint32_t>(f.frame));
