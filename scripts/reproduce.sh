@@ -12,7 +12,7 @@
 # the ground truth on every measured frame, on the primary backend (default: cpu, the fastest where
 # no GPU is at hand; see README "Visibility backends"):
 #   quick (default): one simulation per cell group, every 10th frame (30 frames spread over each
-#     simulation). About 5 minutes on 2 cores (266 s at 6cafbf1, with an incremental build).
+#     simulation). About 5 minutes on 2 cores (324 s at 4c56337, with an incremental build).
 #   standard: the thesis' 10 simulations per cell group, every 5th frame (60 frames each), for the
 #     thesis' three strategies; quick_cullide, which is not in the thesis' tables and costs as much
 #     as cullide, on the first 3 of them. Then the other backends on a subset, 2 simulations each
