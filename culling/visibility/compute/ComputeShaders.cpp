@@ -63,8 +63,12 @@ layout(std430, binding = 7) readonly buffer Boxes { dvec4 boxRows[]; };
 layout(std430, binding = 5) readonly buffer Chains { Chain chains[]; };
 #endif
 #ifdef PIECES
-layout(std430, binding = 8) buffer PieceBoxes { ivec4 pieceBox[]; };
-layout(std430, binding = 9) buffer PieceCoverage { vec4 pieceCoverage[]; };
+// A piece's pixel box, and its edges' and depth plane's bounds (lo, hi); its edge functions and
+// depth plane (a, b, c: three vec4 a piece, the plane in w). Two blocks of 48 bytes a piece, so
+// that each stays within the 128 MiB llvmpipe binds for 2.8 million pieces.
+struct PieceBound { ivec4 box; vec4 lo; vec4 hi; };
+layout(std430, binding = 8) buffer PieceBounds { PieceBound pieceBound[]; };
+layout(std430, binding = 9) buffer PieceEdges { vec4 pieceEdge[]; };
 #endif
 #ifdef CHUNKS
 layout(std430, binding = 10) buffer Chunks { Chunk chunks[]; };
@@ -418,12 +422,12 @@ void main() {
     }
   }
   uint piece = chunk * kChunkSlots + lane;
-  pieceBox[piece] = box;
-  pieceCoverage[5u * piece] = rA;
-  pieceCoverage[5u * piece + 1u] = rB;
-  pieceCoverage[5u * piece + 2u] = rC;
-  pieceCoverage[5u * piece + 3u] = rLo;
-  pieceCoverage[5u * piece + 4u] = rHi;
+  pieceBound[piece].box = box;
+  pieceBound[piece].lo = rLo;
+  pieceBound[piece].hi = rHi;
+  pieceEdge[3u * piece] = rA;
+  pieceEdge[3u * piece + 1u] = rB;
+  pieceEdge[3u * piece + 2u] = rC;
   if (box.x <= box.z) {
     atomicMin(rectX0, box.x), atomicMin(rectY0, box.y);
     atomicMax(rectX1, box.z), atomicMax(rectY1, box.w);
@@ -463,7 +467,7 @@ ivec4 chunkMasks(uint chunk, Chunk k) {
   memoryBarrierShared();
   barrier();
   if (uint(lane) < k.count) {
-    ivec4 b = pieceBox[chunk * kChunkSlots + uint(lane)];
+    ivec4 b = pieceBound[chunk * kChunkSlots + uint(lane)].box;
     if (b.x <= b.z && b.y <= b.w) {
       uint bit = 1u << uint(lane & 31);
       ivec4 at = b / kTile - tiles.xyxy;
@@ -695,13 +699,12 @@ bool edgeInside(float A, float B, float C, float LO, float HI, float dx, float d
 // there: small pieces every pixel of their box at their key bound, others by block cover and the
 // SIMD loops' fused edge and depth functions.
 bool pieceAt(uint piece, ivec4 box, int x, int y, bool test, bool conservative, out float key) {
-  vec4 LO = pieceCoverage[5u * piece + 3u], HI = pieceCoverage[5u * piece + 4u];
+  vec4 LO = pieceBound[piece].lo, HI = pieceBound[piece].hi;
   if (conservative && box.z - box.x < 3 && box.w - box.y < 3) {
     key = test ? HI.w : LO.w;
     return true;
   }
-  vec4 A = pieceCoverage[5u * piece], B = pieceCoverage[5u * piece + 1u];
-  vec4 C = pieceCoverage[5u * piece + 2u];
+  vec4 A = pieceEdge[3u * piece], B = pieceEdge[3u * piece + 1u], C = pieceEdge[3u * piece + 2u];
   bool oneBlock = (box.x >> 3) == (box.z >> 3) && (box.y >> 3) == (box.w >> 3);
   int cover = test && oneBlock ? 1 : blockCover(box, A, B, C, LO, HI, x >> 3, y >> 3);
   precise float dx = float(x - box.x), dy = float(y - box.y);
@@ -776,7 +779,7 @@ void main() {
         high &= high - 1u;
       }
       uint piece = chunk * kChunkSlots + s;
-      ivec4 box = pieceBox[piece];
+      ivec4 box = pieceBound[piece].box;
       if (x < box.x || x > box.z || y < box.y || y > box.w) continue;
       float key;
       if (!pieceAt(piece, box, x, y, test, conservative, key)) continue;

@@ -24,7 +24,7 @@ namespace {
 // Buffer bindings of ComputeShaders.cpp.
 enum Binding : GLuint {
   kVertices = 0, kTriangles = 1, kMeshes = 2, kCommands = 3, kPasses = 4, kChains = 5,
-  kListedBinding = 6, kBoxRows = 7, kPieceBoxes = 8, kPieceCoverage = 9, kChunks = 10,
+  kListedBinding = 6, kBoxRows = 7, kPieceBounds = 8, kPieceEdges = 9, kChunks = 10,
   kTileCounts = 11, kTileOffsets = 12, kTileLists = 13, kAnswers = 14, kStatus = 15,
   kRetainedIn = 16, kRetainedOut = 17, kUsedTiles = 18, kTileMasks = 19, kTileHeavy = 20,
   kHeavyStates = 21
@@ -32,7 +32,8 @@ enum Binding : GLuint {
 constexpr GLint kStorageBlocksNeeded = 15;  // the evaluation's
 constexpr GLint kBindingsNeeded = 22;
 constexpr std::size_t kHeavyStateBytes = 3 * kTile * kTile * sizeof(std::uint32_t);
-constexpr std::size_t kPieceCoverageBytes = 5 * 4 * sizeof(float);
+// A piece's bytes in each of its two blocks (ComputeShaders: PieceBounds, PieceEdges).
+constexpr std::size_t kPieceBytes = 3 * 4 * sizeof(float);
 
 GLint glInteger(GLenum what) {
   GLint value = 0;
@@ -445,15 +446,15 @@ void GlComputeBackend::flush() {
   const std::uint32_t answerCount = issued_ - base;
   const std::size_t pieces = std::size_t{chunks} * kChunkSlots;
   // A storage block larger than the context binds is read as zeros on llvmpipe, not refused: a
-  // fetch that needs one fails here instead (llvmpipe binds 128 MiB: 1.6 million pieces).
+  // fetch that needs one fails here instead (llvmpipe binds 128 MiB: 2.8 million pieces).
   const std::size_t most = static_cast<std::size_t>(glInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE));
-  if (pieces * kPieceCoverageBytes > most)
+  if (pieces * kPieceBytes > most)
     throw RunError("gl-compute: a fetch of " + std::to_string(pieces) + " pieces needs " +
-                   std::to_string(pieces * kPieceCoverageBytes >> 20) +
+                   std::to_string(pieces * kPieceBytes >> 20) +
                    " MiB in one storage block; this GL context binds at most " +
                    std::to_string(most >> 20) + " MiB (fetches are not split yet)");
-  pieceBoxes_.reserve(std::max<std::size_t>(pieces, 1) * 16);
-  pieceCoverage_.reserve(std::max<std::size_t>(pieces, 1) * kPieceCoverageBytes);
+  pieceBounds_.reserve(std::max<std::size_t>(pieces, 1) * kPieceBytes);
+  pieceEdges_.reserve(std::max<std::size_t>(pieces, 1) * kPieceBytes);
   chunks_.reserve(std::max<std::uint32_t>(chunks, 1) * 32);
   tileCounts_.reserve((tiles + 1) * sizeof(std::uint32_t));
   tileOffsets_.reserve((tiles + 1) * sizeof(std::uint32_t));
@@ -479,7 +480,7 @@ void GlComputeBackend::flush() {
   // Bindings and uniforms of every stage.
   for (const Section& s : sections) upload_.bind(s.binding, s.offset, s.bytes);
   vertices_.bind(kVertices), triangles_.bind(kTriangles), meshes_.bind(kMeshes);
-  pieceBoxes_.bind(kPieceBoxes), pieceCoverage_.bind(kPieceCoverage), chunks_.bind(kChunks);
+  pieceBounds_.bind(kPieceBounds), pieceEdges_.bind(kPieceEdges), chunks_.bind(kChunks);
   tileCounts_.bind(kTileCounts), tileOffsets_.bind(kTileOffsets);
   answerWords_.bind(kAnswers), status_.bind(kStatus);
   retained_[retainedIn_].bind(kRetainedIn), retained_[out].bind(kRetainedOut);

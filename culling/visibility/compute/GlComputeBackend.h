@@ -142,7 +142,7 @@ class GlComputeBackend final : public VisibilityBackend {
   // GPU storage.
   compute::MappedBuffer upload_{compute::MappedBuffer::Access::Write};
   compute::MappedBuffer readBack_{compute::MappedBuffer::Access::Read};
-  compute::DeviceBuffer pieceBoxes_, pieceCoverage_, chunks_, tileCounts_, tileOffsets_,
+  compute::DeviceBuffer pieceBounds_, pieceEdges_, chunks_, tileCounts_, tileOffsets_,
       tileLists_, tileMasks_, usedTiles_, answerWords_, status_, tileHeavy_, heavyStates_;
   // Two buffers a chain's depths are kept in (ComputeShaders: RetainedIn, RetainedOut), each with
   // the value its uniform tiles hold.
