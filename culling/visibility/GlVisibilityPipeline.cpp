@@ -105,13 +105,10 @@ void GlVisibilityPipeline::checkRange(const MeshRange& range) const {
 DepthPassSetup GlVisibilityPipeline::beginCheckedPass(const ViewSpec& view, DepthUse depth) {
   if (depth == DepthUse::OrderIndependent && programs_ != PipelinePrograms::Flags)
     throw InputError("order-independent passes need the flag programs (gl-flags)");
-  if (depth == DepthUse::SharedSecond &&
-      (lastDepth_ != DepthUse::SharedFirst || lastResolution_ != view.resolution))
-    throw RunError("a SharedSecond pass must follow a SharedFirst pass of the same resolution");
+  sequence_.checkBegin(view, depth);
   const DepthPassSetup setup = makeDepthPassSetup(view, depth);
   beginPass(setup, depth == DepthUse::OrderIndependent);
-  lastDepth_ = depth;
-  lastResolution_ = view.resolution;
+  sequence_.begin(view, depth);
   return setup;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "culling/visibility/DepthPassSetup.h"
+#include "culling/visibility/PassSequence.h"
 #include "culling/visibility/FlagShaders.h"
 #include "culling/visibility/GlPassTarget.h"
 #include "culling/visibility/GlDrawTimer.h"
@@ -59,7 +60,7 @@ class GlVisibilityPipeline {
 
   void attach(const SceneGeometry& scene) {
     buffers_.attach(scene);
-    lastResolution_ = 0;
+    sequence_.newScene();
   }
   void uploadPoses(std::span<const Pose> poses) { buffers_.uploadPoses(poses); }
   [[nodiscard]] const GlSceneBuffers& buffers() const { return buffers_; }
@@ -204,8 +205,7 @@ class GlVisibilityPipeline {
   double rawDepthOffset_ = 0.0;
   DepthPassSetup setup_;
   bool inPass_ = false;
-  DepthUse lastDepth_ = DepthUse::Fresh;
-  int lastResolution_ = 0;
+  PassSequence sequence_;  // the SharedSecond rule (the backends check their own draws)
   // Cached draw state; reset by every pass.
   DrawRole role_ = DrawRole::None;
   std::vector<GLint> runFirsts_;

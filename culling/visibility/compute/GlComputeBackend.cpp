@@ -168,7 +168,7 @@ void GlComputeBackend::attachScene(const SceneGeometry& scene) {
   context_->makeCurrent();
   scene_ = &scene;
   retainedValid_ = false;
-  lastResolution_ = 0;
+  sequence_.newScene();
   inPass_ = false;
   std::vector<float> vertices;
   std::vector<std::uint32_t> triangles;
@@ -208,7 +208,7 @@ void GlComputeBackend::setPoses(std::span<const Pose> poses) {
 void GlComputeBackend::openPass(bool continues) {
   RecordedPass pass;
   const RasterPass raster =
-      rasterPassOf(passSetup_, options_, lastDepth_ == DepthUse::OrderIndependent);
+      rasterPassOf(passSetup_, options_, sequence_.depth() == DepthUse::OrderIndependent);
   GpuPass& g = pass.gpu;
   g.depthEpsilon = raster.depthEpsilon;
   g.marginPx = raster.marginPx;
@@ -227,18 +227,14 @@ void GlComputeBackend::openPass(bool continues) {
 
 void GlComputeBackend::beginPass(const ViewSpec& view, DepthUse depth) {
   if (!scene_) throw RunError("a visibility pass began before a scene was attached");
-  if (depth == DepthUse::SharedSecond &&
-      (lastDepth_ != DepthUse::SharedFirst || lastResolution_ != view.resolution))
-    throw RunError("a SharedSecond pass must follow a SharedFirst pass of the same resolution");
+  sequence_.checkBegin(view, depth);
   const DepthPassSetup setup = makeDepthPassSetup(view, depth);
   if (setup.resolution > kMaxResolution)
     throw InputError("resolution " + std::to_string(setup.resolution) + " is outside 1.." +
                      std::to_string(kMaxResolution) + " (gl-compute's largest buffer)");
   passSetup_ = setup;
   worldToKey_ = worldToKeyOf(setup);
-  lastDepth_ = depth;
-  lastResolution_ = view.resolution;
-  testedInPass_ = false;
+  sequence_.begin(view, depth);
   // A SharedSecond pass whose SharedFirst already ran goes on in the buffer that pass left.
   openPass(depth == DepthUse::SharedSecond && passes_.empty());
   inPass_ = true;
@@ -248,10 +244,7 @@ void GlComputeBackend::beginPass(const ViewSpec& view, DepthUse depth) {
 
 GpuCommand& GlComputeBackend::record(std::uint32_t flags, ObjectId object, std::uint32_t count) {
   if (passes_.empty()) openPass(true);  // draws after a fetch go on in the open pass
-  const bool test = (flags & kTest) != 0;
-  if (!test && testedInPass_ && lastDepth_ == DepthUse::OrderIndependent)
-    throw RunError("a write after a test in an order-independent pass");
-  testedInPass_ = testedInPass_ || test;
+  sequence_.draw((flags & kTest) != 0);
   GpuCommand& c = commands_.emplace_back();
   const ScreenMatrix toScreen = worldToKey_ * poses_[object];
   for (int r = 0; r < 3; ++r)

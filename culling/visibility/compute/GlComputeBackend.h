@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "culling/visibility/DepthPassSetup.h"
+#include "culling/visibility/PassSequence.h"
 #include "culling/visibility/VisibilityBackend.h"
 #include "culling/visibility/compute/ComputeBuffers.h"
 #include "culling/visibility/compute/ComputeLayout.h"
@@ -116,9 +117,7 @@ class GlComputeBackend final : public VisibilityBackend {
   bool inPass_ = false;
   DepthPassSetup passSetup_;
   ScreenMatrix worldToKey_ = ScreenMatrix::Zero();
-  DepthUse lastDepth_ = DepthUse::Fresh;
-  int lastResolution_ = 0;
-  bool testedInPass_ = false;
+  PassSequence sequence_;
 
   // The recording since the last fetch.
   struct RecordedPass {

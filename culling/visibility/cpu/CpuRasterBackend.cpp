@@ -54,7 +54,7 @@ void CpuRasterBackend::attachScene(const SceneGeometry& scene) {
   scene_ = &scene;
   meshBounds_ = meshBoundsOf(scene);
   poses_.assign(scene.objectCount(), Eigen::Matrix4d::Identity());
-  lastResolution_ = 0;
+  sequence_.newScene();
 }
 
 void CpuRasterBackend::setPoses(std::span<const Pose> poses) {
@@ -64,7 +64,7 @@ void CpuRasterBackend::setPoses(std::span<const Pose> poses) {
 
 CpuPass CpuRasterBackend::passFor(const DepthPassSetup& setup) const {
   CpuPass pass;
-  pass.raster = rasterPassOf(setup, options_, lastDepth_ == DepthUse::OrderIndependent);
+  pass.raster = rasterPassOf(setup, options_, sequence_.depth() == DepthUse::OrderIndependent);
   pass.clears = setup.clear;
   pass.clearValue = static_cast<float>(setup.clearDepth);
   return pass;
@@ -72,9 +72,7 @@ CpuPass CpuRasterBackend::passFor(const DepthPassSetup& setup) const {
 
 void CpuRasterBackend::beginPass(const ViewSpec& view, DepthUse depth) {
   if (!scene_) throw RunError("a visibility pass began before a scene was attached");
-  if (depth == DepthUse::SharedSecond &&
-      (lastDepth_ != DepthUse::SharedFirst || lastResolution_ != view.resolution))
-    throw RunError("a SharedSecond pass must follow a SharedFirst pass of the same resolution");
+  sequence_.checkBegin(view, depth);
   const DepthPassSetup setup = makeDepthPassSetup(view, depth);
   if (setup.resolution > kMaxResolution)
     throw InputError("resolution " + std::to_string(setup.resolution) + " is outside 1.." +
@@ -82,9 +80,7 @@ void CpuRasterBackend::beginPass(const ViewSpec& view, DepthUse depth) {
   setup_ = setup;
   worldToKey_ = worldToKeyOf(setup);
   CpuRecording& recording = open_->recording;
-  lastDepth_ = depth;
-  lastResolution_ = view.resolution;
-  testedInPass_ = false;
+  sequence_.begin(view, depth);
   CpuPass pass = passFor(setup);
   // Its SharedFirst already ran: it goes on in the buffer that pass left.
   pass.continues = depth == DepthUse::SharedSecond && recording.passes.empty();
@@ -106,9 +102,7 @@ CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source s
     pass.firstCommand = static_cast<std::uint32_t>(recording.commands.size());
     recording.passes.push_back(pass);
   }
-  if (role == CpuCommand::Role::Write && testedInPass_ && lastDepth_ == DepthUse::OrderIndependent)
-    throw RunError("a write after a test in an order-independent pass");
-  testedInPass_ = testedInPass_ || role == CpuCommand::Role::Test;
+  sequence_.draw(role == CpuCommand::Role::Test);
   CpuCommand& c = recording.commands.emplace_back();
   c.role = role;
   c.source = source;

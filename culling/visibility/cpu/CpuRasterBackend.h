@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "culling/visibility/DepthPassSetup.h"
+#include "culling/visibility/PassSequence.h"
 #include "culling/visibility/VisibilityBackend.h"
 #include "culling/visibility/cpu/CpuBins.h"
 #include "culling/visibility/cpu/CpuMeshBounds.h"
@@ -105,9 +106,7 @@ class CpuRasterBackend final : public VisibilityBackend {
   bool inPass_ = false;
   DepthPassSetup setup_;
   ScreenMatrix worldToKey_ = ScreenMatrix::Zero();
-  DepthUse lastDepth_ = DepthUse::Fresh;
-  int lastResolution_ = 0;
-  bool testedInPass_ = false;  // a test was issued in the open pass
+  PassSequence sequence_;
 
   std::shared_ptr<CpuRun> open_;            // what is being recorded
   std::vector<std::uint32_t> partScratch_;  // recordRange's part of a mesh, listed
