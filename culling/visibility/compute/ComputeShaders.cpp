@@ -1,5 +1,9 @@
 #include "culling/visibility/compute/ComputeShaders.h"
 
+#include <cstdint>
+#include <string>
+#include <utility>
+
 #include "culling/visibility/compute/ComputeLayout.h"
 
 namespace cdb::compute {
@@ -14,25 +18,20 @@ std::string common(const char* buffers, bool nativeFma) {
 )";
   s += nativeFma ? "#define CDB_NATIVE_FMA 1\n" : "#define CDB_NATIVE_FMA 0\n";
   s += buffers;
-  s += R"(
-const uint kTest = )" + std::to_string(kTest) + R"(u;
-const uint kAnswerEach = )" + std::to_string(kAnswerEach) + R"(u;
-const uint kBoxes = )" + std::to_string(kBoxes) + R"(u;
-const uint kListed = )" + std::to_string(kListed) + R"(u;
-const uint kConservative = )" + std::to_string(kConservative) + R"(u;
-const uint kReversed = )" + std::to_string(kReversed) + R"(u;
-const uint kOrderIndependent = )" + std::to_string(kOrderIndependent) + R"(u;
-const uint kWindingPositive = )" + std::to_string(kWindingPositive) + R"(u;
-const uint kWindingNegative = )" + std::to_string(kWindingNegative) + R"(u;
-const uint kContinues = )" + std::to_string(kContinues) + R"(u;
-const uint kRetained = )" + std::to_string(kRetained) + R"(u;
-const uint kChainOrderIndependent = )" + std::to_string(kChainOrderIndependent) + R"(u;
-const uint kChunkSlots = )" + std::to_string(kChunkSlots) + R"(u;
-const int kTile = )" + std::to_string(kTile) + R"(;
-const int kMaxTileColumns = )" + std::to_string(kMaxTileColumns) + R"(;
-const uint kCutScan = )" + std::to_string(kCutScan) + R"(u;
-const uint kCutSort = )" + std::to_string(kCutSort) + R"(u;
-const uint kNoObject = 0xffffffffu;
+  // ComputeLayout.h's constants, under the same names.
+  const std::pair<const char*, std::uint32_t> unsignedConstants[] = {
+      {"kTest", kTest}, {"kAnswerEach", kAnswerEach}, {"kBoxes", kBoxes}, {"kListed", kListed},
+      {"kConservative", kConservative}, {"kReversed", kReversed},
+      {"kOrderIndependent", kOrderIndependent}, {"kWindingPositive", kWindingPositive},
+      {"kWindingNegative", kWindingNegative}, {"kContinues", kContinues}, {"kRetained", kRetained},
+      {"kChainOrderIndependent", kChainOrderIndependent}, {"kChunkSlots", kChunkSlots},
+      {"kCutScan", kCutScan}, {"kCutSort", kCutSort}};
+  s += "\n";
+  for (const auto& [name, value] : unsignedConstants)
+    s += "const uint " + std::string(name) + " = " + std::to_string(value) + "u;\n";
+  s += "const int kTile = " + std::to_string(kTile) + ";\n";
+  s += "const int kMaxTileColumns = " + std::to_string(kMaxTileColumns) + ";\n";
+  s += R"(const uint kNoObject = 0xffffffffu;
 
 struct Command {
   dvec4 row[3];
