@@ -66,7 +66,6 @@ GlProgramName computeProgram(const char* label, const std::string& source) {
   }
 }
 
-
 // `groups` workgroups as a grid of at most 65535 a row.
 void dispatch(std::uint32_t groups) {
   if (groups == 0) return;
@@ -117,6 +116,7 @@ GlComputeBackend::GlComputeBackend(HeadlessGlContext& context, const VisibilityO
     : context_(&context) {
   context.makeCurrent();
   checkCapabilities();
+  maxStorageBlock_ = static_cast<std::size_t>(glInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE));
   loopLimited_ = context.info().glRenderer.find("llvmpipe") != std::string::npos;
   segmentEntries_ = loopLimited_ ? kLoopLimitedSegment : 0xffffffffu;
   nativeFma_ = mulAddRoundsOnce(true);
@@ -440,7 +440,7 @@ void GlComputeBackend::flush() {
   const std::size_t pieces = std::size_t{chunks} * kChunkSlots;
   // A storage block larger than the context binds is read as zeros on llvmpipe, not refused: a
   // fetch that needs one fails here instead (llvmpipe binds 128 MiB: 2.8 million pieces).
-  const std::size_t most = static_cast<std::size_t>(glInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE));
+  const std::size_t most = maxStorageBlock_;
   if (pieces * kPieceBytes > most)
     throw RunError("gl-compute: a fetch of " + std::to_string(pieces) + " pieces needs " +
                    std::to_string(pieces * kPieceBytes >> 20) +
@@ -513,7 +513,7 @@ void GlComputeBackend::useProgram(const GlProgramName& program) const {
 }
 
 bool GlComputeBackend::runChain(std::uint32_t chunks, std::uint32_t tiles) {
-  const std::size_t most = static_cast<std::size_t>(glInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE));
+  const std::size_t most = maxStorageBlock_;
   if (listCapacity_ * 2 * sizeof(std::uint32_t) > most)
     throw RunError("gl-compute: the fetch's tile lists need " + std::to_string(listCapacity_) +
                    " entries, more than one storage block of this GL context holds (" +

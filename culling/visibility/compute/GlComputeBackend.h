@@ -106,6 +106,7 @@ class GlComputeBackend final : public VisibilityBackend {
   // entries of a tile's list one evaluation dispatch takes.
   bool loopLimited_ = false;
   std::uint32_t segmentEntries_ = 0;
+  std::size_t maxStorageBlock_ = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE, read once
 
   // The scene.
   const SceneGeometry* scene_ = nullptr;
