@@ -96,25 +96,37 @@ void boundItem(const ScreenExtent& e, bool finite, const RasterPass& pass, CpuIt
   item.kHi = clampToPass(raster_detail::roundUp(e.hi[2] + shift + slack));
 }
 
-// A chunk item's bounds from the boxes of its parts (empty boxes: parts it does not have): each
-// part's screen extent, and the item's their union (every triangle lies in its part's box, so in
-// its part's extent; tighter than the extent of the parts' union box).
-void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3f> parts,
-                const RasterPass& pass, CpuItem& item, CpuItemParts& rects) {
+// A mesh part's (or a listed part's) screen bounds from its box.
+CpuPartScreenBounds partBoundsOf(const ScreenMatrix& toScreen, const Eigen::AlignedBox3f& box,
+                                 const RasterPass& pass) {
+  CpuPartScreenBounds b;
+  if (box.isEmpty()) return b;
+  const ScreenExtent e = extentOf(toScreen, box);
+  for (int i = 0; i < 3; ++i) b.lo[i] = e.lo[i], b.hi[i] = e.hi[i];
+  b.present = true;
+  b.finite = e.finite();
+  b.rect = pixelsOf(e, b.finite, pass);
+  return b;
+}
+
+// A chunk item's bounds from its parts' (null or not present: parts it does not have): each
+// part's rectangle, and the item's from the union of their extents (every triangle lies in its
+// part's box, so in its part's extent; tighter than the extent of the parts' union box).
+void boundChunk(std::span<const CpuPartScreenBounds* const> parts, const RasterPass& pass,
+                CpuItem& item, CpuItemParts& rects) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   ScreenExtent all{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
   bool any = false, finite = true;
   for (std::size_t p = 0; p < rects.size(); ++p) {
-    if (parts[p].isEmpty()) {
+    const CpuPartScreenBounds* part = parts[p];
+    if (part == nullptr || !part->present) {
       rects[p] = {};
       continue;
     }
-    const ScreenExtent e = extentOf(toScreen, parts[p]);
-    const bool partFinite = e.finite();
-    rects[p] = pixelsOf(e, partFinite, pass);
+    rects[p] = part->rect;
     for (int i = 0; i < 3; ++i)
-      all.lo[i] = std::min(all.lo[i], e.lo[i]), all.hi[i] = std::max(all.hi[i], e.hi[i]);
-    finite = finite && partFinite;
+      all.lo[i] = std::min(all.lo[i], part->lo[i]), all.hi[i] = std::max(all.hi[i], part->hi[i]);
+    finite = finite && part->finite;
     any = true;
   }
   if (!any) {
@@ -125,10 +137,12 @@ void boundChunk(const ScreenMatrix& toScreen, std::span<const Eigen::AlignedBox3
 }
 
 // Items [n0, n1) of command `ci`, at items[n0 ..]; a chunk item's parts at
-// bins.parts[firstParts + n0 ..].
+// bins.parts[firstParts + n0 ..]. A part that is a whole part of the mesh takes its vertex set's
+// bounds of that part (made once for every command of the set).
 void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
-               std::uint32_t ci, std::uint32_t pass, CpuItem* items, CpuBins& bins,
-               std::uint32_t firstParts, std::uint32_t n0, std::uint32_t n1) {
+               const CpuScreenVertices& vertices, std::uint32_t ci, std::uint32_t pass,
+               CpuItem* items, CpuBins& bins, std::uint32_t firstParts, std::uint32_t n0,
+               std::uint32_t n1) {
   const CpuCommand& c = recording.commands[ci];
   const RasterPass& raster = recording.passes[pass].raster;
   CpuItem base;
@@ -148,7 +162,18 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
   }
   const CpuMeshBounds& mesh = bounds[c.mesh];
   constexpr std::size_t kParts = kChunkTriangles / kPartTriangles;
-  std::array<Eigen::AlignedBox3f, kParts> parts;
+  static_assert(kParts == CpuScreenVertices::kChunkParts);
+  const auto meshPart = [&](std::uint32_t q) {
+    const CpuPartScreenBounds* chunkParts =
+        vertices.parts(c, q / kParts, mesh.parts.size(),
+                       [&](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
+                         for (std::size_t k = 0; k < count; ++k)
+                           out[k] = partBoundsOf(c.toScreen, mesh.parts[first + k], raster);
+                       });
+    return chunkParts + q % kParts;
+  };
+  std::array<const CpuPartScreenBounds*, kParts> parts;
+  std::array<CpuPartScreenBounds, kParts> listedParts;
   for (std::uint32_t n = n0, at = n0 * kChunkTriangles; n < n1; ++n, at += kChunkTriangles) {
     CpuItem& item = items[n] = base;
     item.first = c.first + at;
@@ -160,22 +185,26 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
     for (std::uint32_t p = 0; p < kParts; ++p) {
       const std::uint32_t p0 = p * kPartTriangles;
       const std::uint32_t p1 = std::min(item.count, p0 + kPartTriangles);
-      parts[p] = {};
-      if (c.source == CpuCommand::Source::Range && p0 < p1)
-        parts[p] = mesh.parts[(item.first + p0) / kPartTriangles];
-      else if (c.source == CpuCommand::Source::Listed && p0 < p1) {
-        // (Positions ascending: a full part listing one part of the mesh is that part, whose box
-        // binning has at hand; the whole-mesh lists of CULLIDE's triangle level are all such.)
-        const std::uint32_t* listed = recording.listed.data() + item.first;
-        if (p1 - p0 == kPartTriangles &&
-            listed[p0] / kPartTriangles == listed[p1 - 1] / kPartTriangles) {
-          parts[p] = mesh.parts[listed[p0] / kPartTriangles];
-          continue;
-        }
-        for (std::uint32_t i = p0; i < p1; ++i) parts[p].extend(mesh.triangles[listed[i]]);
+      parts[p] = nullptr;
+      if (p0 >= p1) continue;
+      if (c.source == CpuCommand::Source::Range) {
+        parts[p] = meshPart((item.first + p0) / kPartTriangles);
+        continue;
       }
+      // (Positions ascending: a full part listing one part of the mesh is that part, whose
+      // bounds its vertex set has; the whole-mesh lists of CULLIDE's triangle level are all such.)
+      const std::uint32_t* listed = recording.listed.data() + item.first;
+      if (p1 - p0 == kPartTriangles &&
+          listed[p0] / kPartTriangles == listed[p1 - 1] / kPartTriangles) {
+        parts[p] = meshPart(listed[p0] / kPartTriangles);
+        continue;
+      }
+      Eigen::AlignedBox3f box;
+      for (std::uint32_t i = p0; i < p1; ++i) box.extend(mesh.triangles[listed[i]]);
+      listedParts[p] = partBoundsOf(c.toScreen, box, raster);
+      parts[p] = &listedParts[p];
     }
-    boundChunk(c.toScreen, parts, raster, item, bins.parts[item.parts]);
+    boundChunk(parts, raster, item, bins.parts[item.parts]);
   }
 }
 
@@ -244,7 +273,8 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_aren
 }  // namespace
 
 void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
-                  int tileSize, int continuedTileSize, tbb::task_arena* arena, CpuBins& bins) {
+                  const CpuScreenVertices& vertices, int tileSize, int continuedTileSize,
+                  tbb::task_arena* arena, CpuBins& bins) {
   const std::size_t commands = recording.commands.size();
   bins.firstItem.resize(commands + 1);
   bins.firstParts.resize(commands);
@@ -295,8 +325,8 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
   }
   forEachIndex(arena, bins.itemTasks.size(), [&](std::size_t t) {
     const auto [i, n0, n1] = bins.itemTasks[t];
-    makeItems(recording, bounds, i, passOf[i], bins.items.data() + bins.firstItem[i], bins,
-              bins.firstParts[i], n0, n1);
+    makeItems(recording, bounds, vertices, i, passOf[i], bins.items.data() + bins.firstItem[i],
+              bins, bins.firstParts[i], n0, n1);
   });
   forEachIndex(arena, chains,
                [&](std::size_t c) { binChain(recording, bins, arena, bins.chains[c]); });

@@ -13,22 +13,11 @@
 #include <vector>
 
 #include "culling/visibility/cpu/CpuMeshBounds.h"
+#include "culling/visibility/cpu/CpuPixelRect.h"
 #include "culling/visibility/cpu/CpuRecording.h"
 #include "culling/visibility/cpu/CpuScreenVertices.h"
 
 namespace cdb {
-
-// Pixels [x0, x1] x [y0, y1] (inclusive) of the frame.
-struct PixelRect {
-  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-  [[nodiscard]] bool empty() const { return x0 > x1 || y0 > y1; }
-  [[nodiscard]] bool overlaps(const PixelRect& o) const {
-    return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1;
-  }
-  [[nodiscard]] PixelRect within(const PixelRect& o) const {
-    return {std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
-  }
-};
 
 struct CpuItem {
   std::uint32_t command = 0;
@@ -103,10 +92,11 @@ struct CpuRun {
 }
 
 // Bins the (closed) recording; its commands' meshes are the scene's, `bounds` their
-// CpuMeshBounds. Tiles are `tileSize` pixels (0: one tile the whole frame, rounded up to a block);
-// a chain that continues a buffer keeps that buffer's `continuedTileSize`. Runs on `arena` when
-// given.
+// CpuMeshBounds, `vertices` its vertex sets (assigned: their part bounds are made here). Tiles are
+// `tileSize` pixels (0: one tile the whole frame, rounded up to a block); a chain that continues a
+// buffer keeps that buffer's `continuedTileSize`. Runs on `arena` when given.
 void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
-                  int tileSize, int continuedTileSize, tbb::task_arena* arena, CpuBins& bins);
+                  const CpuScreenVertices& vertices, int tileSize, int continuedTileSize,
+                  tbb::task_arena* arena, CpuBins& bins);
 
 }  // namespace cdb

@@ -9,14 +9,19 @@ namespace cdb {
 
 namespace {
 
-// A mesh and a matrix, compared and hashed by their bits (the backend makes a command's matrix
-// from its pass' view and its object's pose, so equal draws have equal bits).
+// A mesh, a matrix and the pass' pixel grid (what a part's pixels depend on besides its extent),
+// compared and hashed by their bits (the backend makes a command's matrix from its pass' view and
+// its object's pose, so equal draws have equal bits).
 struct SetKey {
   std::uint32_t mesh;
   ScreenMatrix toScreen;
+  int resolution;
+  double marginPx;
   bool operator==(const SetKey& o) const {
-    return mesh == o.mesh && std::memcmp(toScreen.data(), o.toScreen.data(),
-                                         sizeof(double) * ScreenMatrix::SizeAtCompileTime) == 0;
+    return mesh == o.mesh && resolution == o.resolution &&
+           std::memcmp(&marginPx, &o.marginPx, sizeof marginPx) == 0 &&
+           std::memcmp(toScreen.data(), o.toScreen.data(),
+                       sizeof(double) * ScreenMatrix::SizeAtCompileTime) == 0;
   }
 };
 struct SetKeyHash {
@@ -37,35 +42,36 @@ void CpuScreenVertices::assign(CpuRecording& recording, std::span<const CpuMeshB
   sets_.clear();
   std::unordered_map<SetKey, std::uint32_t, SetKeyHash> setOf;
   std::size_t vertices = 0, chunks = 0;
-  for (CpuCommand& c : recording.commands) {
-    if (c.source == CpuCommand::Source::Boxes) continue;
-    const auto [at, added] =
-        setOf.try_emplace(SetKey{c.mesh, c.toScreen}, static_cast<std::uint32_t>(sets_.size()));
-    c.vertexSet = at->second;
-    if (!added) continue;
-    sets_.push_back({vertices, chunks});
-    vertices += bounds[c.mesh].chunkVertices.size();
-    chunks += bounds[c.mesh].chunkVertexStart.size() - 1;
-  }
+  for (const CpuPass& pass : recording.passes)
+    for (std::uint32_t i = pass.firstCommand; i < pass.endCommand; ++i) {
+      CpuCommand& c = recording.commands[i];
+      if (c.source == CpuCommand::Source::Boxes) continue;
+      const SetKey key{c.mesh, c.toScreen, pass.raster.resolution, pass.raster.marginPx};
+      const auto [at, added] = setOf.try_emplace(key, static_cast<std::uint32_t>(sets_.size()));
+      c.vertexSet = at->second;
+      if (!added) continue;
+      sets_.push_back({vertices, chunks});
+      vertices += bounds[c.mesh].chunkVertices.size();
+      chunks += bounds[c.mesh].chunkVertexStart.size() - 1;
+    }
   if (positions_.size() < vertices) positions_.resize(vertices);
+  if (parts_.size() < chunks * kChunkParts) parts_.resize(chunks * kChunkParts);
   if (stateCapacity_ < chunks) {
     states_ = std::make_unique<std::atomic<std::uint8_t>[]>(chunks);
+    partStates_ = std::make_unique<std::atomic<std::uint8_t>[]>(chunks);
     stateCapacity_ = chunks;
   }
-  for (std::size_t i = 0; i < chunks; ++i)
-    states_[i].store(kNotTransformed, std::memory_order_relaxed);
+  for (std::size_t i = 0; i < chunks; ++i) {
+    states_[i].store(kNotMade, std::memory_order_relaxed);
+    partStates_[i].store(kNotMade, std::memory_order_relaxed);
+  }
 }
 
 const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const CpuMeshBounds& bounds,
                                                 std::uint32_t chunk) const {
   const Set& set = sets_[c.vertexSet];
-  const std::size_t first = set.firstVertex + bounds.chunkVertexStart[chunk];
-  CpuScreenVertex* out = positions_.data() + first;
-  std::atomic<std::uint8_t>& state = states_[set.firstChunk + chunk];
-  std::uint8_t now = state.load(std::memory_order_acquire);
-  if (now == kTransformed) return out;
-  if (now == kNotTransformed &&
-      state.compare_exchange_strong(now, kTransforming, std::memory_order_acquire)) {
+  CpuScreenVertex* out = positions_.data() + set.firstVertex + bounds.chunkVertexStart[chunk];
+  once(states_[set.firstChunk + chunk], [&] {
     const std::uint32_t begin = bounds.chunkVertexStart[chunk];
     const std::uint32_t end = bounds.chunkVertexStart[chunk + 1];
     const Eigen::Vector3f* from = bounds.chunkPositions.data();
@@ -73,13 +79,7 @@ const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const CpuMe
       const ScreenPoint p = screenPoint(c.toScreen, from[i].x(), from[i].y(), from[i].z());
       out[i - begin] = {p.x, p.y, p.k};
     }
-    state.store(kTransformed, std::memory_order_release);
-    state.notify_all();
-    return out;
-  }
-  // Another thread is transforming it.
-  while ((now = state.load(std::memory_order_acquire)) != kTransformed)
-    state.wait(now, std::memory_order_acquire);
+  });
   return out;
 }
 

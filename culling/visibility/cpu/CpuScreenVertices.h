@@ -1,10 +1,11 @@
 #pragma once
-// The screen positions of a run's mesh vertices, each transformed once per matrix: the commands
-// that draw one mesh with one matrix (an object's tests and writes in a pass, CULLIDE's two passes
-// of a view) share a vertex set, and a set's vertices are transformed a mesh chunk at a time
-// (CpuMeshBounds::chunkVertices) when a tile first needs that chunk, however many tiles and
-// commands draw it after. The thread that claims a chunk transforms it; one that needs it
-// meanwhile waits for it.
+// What a run knows per vertex set: one mesh under one matrix in passes of one pixel grid (an
+// object's tests and writes in a pass, CULLIDE's two passes of a view share one). Its vertices'
+// screen positions, each transformed once, a mesh chunk at a time (CpuMeshBounds::chunkVertices)
+// when a tile first needs that chunk, however many tiles and commands draw it after; and binning's
+// screen bounds of its mesh parts (CpuPartScreenBounds), made a mesh chunk at a time when an item
+// first needs them, however many commands draw the set. The thread that claims a chunk makes it;
+// one that needs it meanwhile waits for it.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "culling/visibility/cpu/CpuMeshBounds.h"
+#include "culling/visibility/cpu/CpuPixelRect.h"
 #include "culling/visibility/cpu/CpuRecording.h"
 
 namespace cdb {
@@ -20,25 +22,65 @@ struct CpuScreenVertex {
   double x, y, k;
 };
 
+// A mesh part's box (CpuMeshBounds::parts) in a vertex set's screen space: its extent (x, y, key;
+// exact up to rounding), and the pixels a triangle of it can cover (CpuBins).
+struct CpuPartScreenBounds {
+  double lo[3], hi[3];
+  PixelRect rect;
+  bool present = false;  // the part has triangles (a box)
+  bool finite = false;   // its extent is finite
+};
+
 class CpuScreenVertices {
  public:
+  static constexpr std::uint32_t kChunkParts = kChunkTriangles / kPartTriangles;
+
   // Numbers the vertex sets of the (closed) recording's mesh commands (CpuCommand::vertexSet)
-  // and makes room for them; none is transformed yet.
+  // and makes room for them; none is transformed or bounded yet.
   void assign(CpuRecording& recording, std::span<const CpuMeshBounds> bounds);
   // The vertices of chunk `chunk` of command `c`'s mesh (chunkVertices' order), transformed
   // (read from bounds.chunkPositions).
   [[nodiscard]] const CpuScreenVertex* chunk(const CpuCommand& c, const CpuMeshBounds& bounds,
                                              std::uint32_t chunk) const;
+  // The screen bounds of the mesh parts of chunk `chunk` of command `c`'s mesh (its
+  // kChunkParts parts, fewer in the mesh's last chunk), made by make(firstPart, count, out) the
+  // first time any thread asks.
+  template <class Make>
+  [[nodiscard]] const CpuPartScreenBounds* parts(const CpuCommand& c, std::uint32_t chunk,
+                                                 std::size_t meshParts, Make&& make) const {
+    const Set& set = sets_[c.vertexSet];
+    CpuPartScreenBounds* out = parts_.data() + set.firstChunk * kChunkParts + chunk * kChunkParts;
+    const std::size_t first = std::size_t{chunk} * kChunkParts;
+    once(partStates_[set.firstChunk + chunk],
+         [&] { make(first, std::min<std::size_t>(kChunkParts, meshParts - first), out); });
+    return out;
+  }
 
  private:
+  enum State : std::uint8_t { kNotMade, kMaking, kMade };
+  // make() run by the first thread to claim `state`; the others wait until it is made.
+  template <class Make>
+  static void once(std::atomic<std::uint8_t>& state, Make&& make) {
+    std::uint8_t now = state.load(std::memory_order_acquire);
+    if (now == kMade) return;
+    if (now == kNotMade && state.compare_exchange_strong(now, kMaking, std::memory_order_acquire)) {
+      make();
+      state.store(kMade, std::memory_order_release);
+      state.notify_all();
+      return;
+    }
+    while ((now = state.load(std::memory_order_acquire)) != kMade)
+      state.wait(now, std::memory_order_acquire);
+  }
   struct Set {
     std::size_t firstVertex = 0;  // in positions_, chunkVertices' layout
-    std::size_t firstChunk = 0;   // in states_
+    std::size_t firstChunk = 0;   // in the states (and kChunkParts times that in parts_)
   };
-  enum State : std::uint8_t { kNotTransformed, kTransforming, kTransformed };
   std::vector<Set> sets_;
   mutable std::vector<CpuScreenVertex> positions_;
+  mutable std::vector<CpuPartScreenBounds> parts_;
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> states_;
+  mutable std::unique_ptr<std::atomic<std::uint8_t>[]> partStates_;
   std::size_t stateCapacity_ = 0;
 };
 
