@@ -1,9 +1,11 @@
 // The cpu backend's vertex sets (CpuScreenVertices): which commands share one (one mesh, one
 // matrix, one pixel grid), and that what a set keeps per mesh chunk (its vertices transformed,
-// binning's part bounds) is made once for all of them, by one thread however many ask at once.
+// binning's part bounds) is made once for all of them; the vertices by one thread however many
+// ask at once, the part bounds by a thread that finds them being made into its own copy.
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <atomic>
 #include <vector>
 
@@ -89,53 +91,58 @@ TEST_F(CpuScreenVerticesTest, PartBoundsAreMadeOncePerSetAndChunk) {
   const std::size_t meshParts = bounds[0].parts.size();
   ASSERT_EQ(meshParts, 19u);  // 300 triangles in parts of 16
   int made = 0;
+  std::array<CpuPartScreenBounds, CpuScreenVertices::kChunkParts> own;
   std::vector<std::pair<std::size_t, std::size_t>> asked;
   const auto make = [&](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
     ++made;
     asked.emplace_back(first, count);
     for (std::size_t k = 0; k < count; ++k) out[k].rect = {static_cast<int>(first + k), 0, 0, 0};
   };
-  const CpuPartScreenBounds* first = vertices.parts(r.commands[0], 4, meshParts, make);
+  const CpuPartScreenBounds* first = vertices.parts(r.commands[0], 4, meshParts, make, own);
   EXPECT_EQ(made, 1);
   ASSERT_EQ(asked.back(), (std::pair<std::size_t, std::size_t>{16, 3}));  // the last chunk's 3
   // The write of the same set reads what the test's binning made.
-  EXPECT_EQ(vertices.parts(r.commands[1], 4, meshParts, make), first);
+  EXPECT_EQ(vertices.parts(r.commands[1], 4, meshParts, make, own), first);
   EXPECT_EQ(made, 1);
   EXPECT_EQ(first[2].rect.x0, 18);
   // Another chunk, and another set, are made on their own.
-  (void)vertices.parts(r.commands[1], 0, meshParts, make);
+  (void)vertices.parts(r.commands[1], 0, meshParts, make, own);
   EXPECT_EQ(asked.back(), (std::pair<std::size_t, std::size_t>{0, 4}));
-  EXPECT_NE(vertices.parts(r.commands[2], 4, meshParts, make), first);
+  EXPECT_NE(vertices.parts(r.commands[2], 4, meshParts, make, own), first);
   EXPECT_EQ(made, 3);
   // A new recording starts over.
   vertices.assign(r, bounds);
-  (void)vertices.parts(r.commands[0], 4, meshParts, make);
+  (void)vertices.parts(r.commands[0], 4, meshParts, make, own);
   EXPECT_EQ(made, 4);
 }
 
-TEST_F(CpuScreenVerticesTest, OneThreadMakesAChunkHoweverManyAskAtOnce) {
+TEST_F(CpuScreenVerticesTest, ThreadsAskingAtOnceGetMadeChunks) {
   CpuRecording r = recordingOf({{{64, 0.01, 10.0}, {64, 0.01, 10.0}}}, kTriangles);
   CpuScreenVertices vertices;
   vertices.assign(r, bounds);
   const std::size_t meshParts = bounds[0].parts.size();
-  std::atomic<int> made{0};
+  const auto make = [](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
+    for (std::size_t k = 0; k < count; ++k) out[k].rect.x0 = static_cast<int>(first + k);
+  };
   std::atomic<int> wrong{0};
   tbb::parallel_for(0, 2000, [&](int i) {
-    const CpuPartScreenBounds* parts = vertices.parts(
-        r.commands[static_cast<std::size_t>(i % 2)], static_cast<std::uint32_t>(i % 5), meshParts,
-        [&](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
-          ++made;
-          for (std::size_t k = 0; k < count; ++k) out[k].rect.x0 = static_cast<int>(first + k);
-        });
-    if (parts[0].rect.x0 != (i % 5) * 4) ++wrong;  // made before it is read
     const auto chunk = static_cast<std::uint32_t>(i % 5);
-    const CpuScreenVertex* v =
-        vertices.chunk(r.commands[static_cast<std::size_t>(i % 2)], bounds[0], chunk);
+    const CpuCommand& c = r.commands[static_cast<std::size_t>(i % 2)];
+    std::array<CpuPartScreenBounds, CpuScreenVertices::kChunkParts> own;
+    if (vertices.parts(c, chunk, meshParts, make, own)[0].rect.x0 != static_cast<int>(chunk) * 4)
+      ++wrong;  // made before it is read, by this thread or another
+    const CpuScreenVertex* v = vertices.chunk(c, bounds[0], chunk);
     const Eigen::Vector3f& p = bounds[0].chunkPositions[bounds[0].chunkVertexStart[chunk]];
     if (v[0].x != screenPoint(matrix(10.0), p.x(), p.y(), p.z()).x) ++wrong;  // transformed
   });
-  EXPECT_EQ(made.load(), 5);
   EXPECT_EQ(wrong.load(), 0);
+  // Every chunk's bounds are the set's now: nothing is made again.
+  int made = 0;
+  std::array<CpuPartScreenBounds, CpuScreenVertices::kChunkParts> own;
+  for (std::uint32_t chunk = 0; chunk < 5; ++chunk)
+    (void)vertices.parts(r.commands[0], chunk, meshParts,
+                         [&](std::size_t, std::size_t, CpuPartScreenBounds*) { ++made; }, own);
+  EXPECT_EQ(made, 0);
 }
 
 }  // namespace

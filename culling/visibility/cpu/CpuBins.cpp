@@ -163,13 +163,17 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
   const CpuMeshBounds& mesh = bounds[c.mesh];
   constexpr std::size_t kParts = kChunkTriangles / kPartTriangles;
   static_assert(kParts == CpuScreenVertices::kChunkParts);
-  const auto meshPart = [&](std::uint32_t q) {
+  // (Parts of one item lie in at most kParts mesh chunks: each its own copy when another thread
+  // is making that chunk's.)
+  std::array<std::array<CpuPartScreenBounds, kParts>, kParts> own;
+  const auto meshPart = [&](std::uint32_t q, std::uint32_t p) {
     const CpuPartScreenBounds* chunkParts =
         vertices.parts(c, q / kParts, mesh.parts.size(),
                        [&](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
                          for (std::size_t k = 0; k < count; ++k)
                            out[k] = partBoundsOf(c.toScreen, mesh.parts[first + k], raster);
-                       });
+                       },
+                       own[p]);
     return chunkParts + q % kParts;
   };
   std::array<const CpuPartScreenBounds*, kParts> parts;
@@ -188,7 +192,7 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       parts[p] = nullptr;
       if (p0 >= p1) continue;
       if (c.source == CpuCommand::Source::Range) {
-        parts[p] = meshPart((item.first + p0) / kPartTriangles);
+        parts[p] = meshPart((item.first + p0) / kPartTriangles, p);
         continue;
       }
       // (Positions ascending: a full part listing one part of the mesh is that part, whose
@@ -196,7 +200,7 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       const std::uint32_t* listed = recording.listed.data() + item.first;
       if (p1 - p0 == kPartTriangles &&
           listed[p0] / kPartTriangles == listed[p1 - 1] / kPartTriangles) {
-        parts[p] = meshPart(listed[p0] / kPartTriangles);
+        parts[p] = meshPart(listed[p0] / kPartTriangles, p);
         continue;
       }
       Eigen::AlignedBox3f box;

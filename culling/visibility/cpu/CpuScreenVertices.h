@@ -5,7 +5,10 @@
 // when a tile first needs that chunk, however many tiles and commands draw it after; and binning's
 // screen bounds of its mesh parts (CpuPartScreenBounds), made a mesh chunk at a time when an item
 // first needs them, however many commands draw the set. The thread that claims a chunk makes it;
-// one that needs it meanwhile waits for it.
+// one that needs its vertices meanwhile waits for them (one that needs its part bounds makes its
+// own).
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -44,16 +47,26 @@ class CpuScreenVertices {
                                              std::uint32_t chunk) const;
   // The screen bounds of the mesh parts of chunk `chunk` of command `c`'s mesh (its
   // kChunkParts parts, fewer in the mesh's last chunk), made by make(firstPart, count, out) the
-  // first time any thread asks.
+  // first time any thread asks. A thread that finds them being made by another makes the same
+  // values into `own` instead of waiting (binning's tasks would otherwise sleep on each other).
   template <class Make>
-  [[nodiscard]] const CpuPartScreenBounds* parts(const CpuCommand& c, std::uint32_t chunk,
-                                                 std::size_t meshParts, Make&& make) const {
+  [[nodiscard]] const CpuPartScreenBounds* parts(
+      const CpuCommand& c, std::uint32_t chunk, std::size_t meshParts, Make&& make,
+      std::array<CpuPartScreenBounds, kChunkParts>& own) const {
     const Set& set = sets_[c.vertexSet];
     CpuPartScreenBounds* out = parts_.data() + set.firstChunk * kChunkParts + chunk * kChunkParts;
     const std::size_t first = std::size_t{chunk} * kChunkParts;
-    once(partStates_[set.firstChunk + chunk],
-         [&] { make(first, std::min<std::size_t>(kChunkParts, meshParts - first), out); });
-    return out;
+    const std::size_t count = std::min<std::size_t>(kChunkParts, meshParts - first);
+    std::atomic<std::uint8_t>& state = partStates_[set.firstChunk + chunk];
+    std::uint8_t now = state.load(std::memory_order_acquire);
+    if (now == kMade) return out;
+    if (now == kNotMade && state.compare_exchange_strong(now, kMaking, std::memory_order_acquire)) {
+      make(first, count, out);
+      state.store(kMade, std::memory_order_release);
+      return out;
+    }
+    make(first, count, own.data());
+    return own.data();
   }
 
  private:
