@@ -25,6 +25,12 @@ using D = hn::CappedTag<float, CpuDepthBuffer::kBlock>;
 constexpr int kBlock = CpuDepthBuffer::kBlock;
 constexpr bool kTest = true;
 
+// The block column (row) of a pixel column (row) of the frame, and the pixel's place in the block:
+// a shift and a mask, since pixel boxes are clipped to the frame and never negative.
+static_assert(kBlock == 8);
+inline int blockOf(int pixel) { return pixel >> 3; }
+inline int inBlock(int pixel) { return pixel & (kBlock - 1); }
+
 // Stored keys of a block: its bounds in the pass' key order.
 using BlockKeys = CpuDepthBuffer::BlockKeys;
 
@@ -83,8 +89,8 @@ struct BlockRange {
   int x0, y0, x1, y1;
 };
 inline BlockRange blocksInWindow(const CpuDepthBuffer& buffer, const TriangleRaster& r) {
-  return {std::max(r.x0 / kBlock, buffer.blockX0()), std::max(r.y0 / kBlock, buffer.blockY0()),
-          std::min(r.x1 / kBlock, buffer.blockX1()), std::min(r.y1 / kBlock, buffer.blockY1())};
+  return {std::max(blockOf(r.x0), buffer.blockX0()), std::max(blockOf(r.y0), buffer.blockY0()),
+          std::min(blockOf(r.x1), buffer.blockX1()), std::min(blockOf(r.y1), buffer.blockY1())};
 }
 // The same, only the rows and columns that hold a block of `mask` (a piece drawn in a few blocks
 // of its box does not walk the others).
@@ -277,7 +283,7 @@ HWY_INLINE bool testBlock(const CpuDepthBuffer& buffer, std::size_t index, const
                        const auto m = covered(l, row, dx, span);
                        if (allBehind) return !hn::AllFalse(d, m);
                        const auto key = keyAt(l, row, dx);
-                       const int at = (y % kBlock) * kBlock + lx;
+                       const int at = inBlock(y) * kBlock + lx;
                        hn::Vec<D> storedKey;
                        if (uniform) {
                          storedKey = hn::Set(d, stored.nearest);
@@ -310,7 +316,7 @@ HWY_INLINE bool writeBlock(CpuDepthBuffer& buffer, std::size_t index, const Lane
       l, r, span, bx, work.pixelsWritten,
       [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
         const auto m = kWhole ? inBox(dx, span) : covered(l, row, dx, span);
-        const int at = (y % kBlock) * kBlock + lx;
+        const int at = inBlock(y) * kBlock + lx;
         const auto key = keyAt(l, row, dx);
         if constexpr (kOthers) {
           const auto nearest = hn::LoadU(d, values + at);
@@ -352,7 +358,7 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
                 BlockMask mask, const Writer& writer, RasterWork& work,
                 PendingBlocks* pending = nullptr) {
   const D d;
-  const bool oneBlock = r.x0 / kBlock == r.x1 / kBlock && r.y0 / kBlock == r.y1 / kBlock;
+  const bool oneBlock = blockOf(r.x0) == blockOf(r.x1) && blockOf(r.y0) == blockOf(r.y1);
   const auto sign = hn::Set(d, pass.sign);
   const Lanes l = lanesOf(r);
   const BlockRange blocks = blocksInMask(buffer, r, mask);
@@ -419,7 +425,7 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
       }
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-          const int at = (y % kBlock) * kBlock + x % kBlock;
+          const int at = inBlock(y) * kBlock + inBlock(x);
           if constexpr (kIsTest) {
             ++work.pixelsTested;
             const float key = kOthers && buffer.objects(index)[at] == writer.object
@@ -679,8 +685,9 @@ std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, co
                               PendingBlocks* pending, std::uint8_t* each) {
   BoundsInBatches<Piece> bounds(pieces, count, pass, RasterRole::Test);
   if (each != nullptr || pending == nullptr) {
+    // (Every field a piece's drawing reads is set by its own set-up first: one for all of them.)
+    TriangleRaster r;
     for (std::size_t i = 0; i < count; ++i) {
-      TriangleRaster r;
       bool coverage = false;
       if ((each == nullptr || each[i]) && bounds.next(i, r) &&
           (drawSetUp<kTest, kOthers>(buffer, pass, pieces[i], r, coverage, kAllBlocks, writer, work,
