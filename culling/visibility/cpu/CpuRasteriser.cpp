@@ -491,8 +491,32 @@ template <bool kIsTest, bool kOthers, class Piece>
 HWY_INLINE bool drawSetUp(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece& t,
                           TriangleRaster& r, bool& coverage, BlockMask mask, const Writer& writer,
                           RasterWork& work, PendingBlocks* pending) {
-  if (smallBox(pass, r))
+  if (smallBox(pass, r)) {
+    if constexpr (kIsTest && !kOthers) {
+      // Most small tests lie in one block, which its keys decide (nothing stored in front: not
+      // occluded there) or which is occluded at once (uniform, or everything stored at or in front
+      // of the test): drawSmall's steps for that block, without the call. The rest (pixels to
+      // read, pending writes to resolve first, several blocks) goes to drawSmall. (In an
+      // order-independent pass most tests read their block's pixels: not worth the look.)
+      const int bx = blockOf(r.x0), by = blockOf(r.y0);
+      if (bx == blockOf(r.x1) && by == blockOf(r.y1)) {
+        if (bx < buffer.blockX0() || bx > buffer.blockX1() || by < buffer.blockY0() ||
+            by > buffer.blockY1())
+          return false;
+        const std::size_t index = buffer.blockIndex(bx, by);
+        if (!inMask(mask, index)) return false;
+        if (!unresolved(pending, index)) {
+          const BlockKeys stored = buffer.blockKeys(index, pass.sign);
+          if (blockDecides<kIsTest>(r, stored)) return false;
+          if (buffer.uniform(index) || r.zLo >= stored.farthest) {
+            ++work.pixelsTested;
+            return true;
+          }
+        }
+      }
+    }
     return drawSmall<kIsTest, kOthers>(buffer, pass, r, mask, writer, work, pending);
+  }
   if (decidedByBlocks<kIsTest>(buffer, pass, r, mask, pending)) return false;
   if (!coverage) setupCoverage(t, pass, kIsTest ? RasterRole::Test : RasterRole::Write, r);
   coverage = true;
@@ -639,11 +663,16 @@ std::size_t prepare(const CpuDepthBuffer& buffer, const RasterPass& pass, const 
     const BlockRange blocks = blocksInWindow(buffer, w.raster);
     if (blocks.x0 > blocks.x1 || blocks.y0 > blocks.y1) continue;
     w.blocks = 0;
-    for (int by = blocks.y0; by <= blocks.y1; ++by)
-      for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
-        const std::size_t index = buffer.blockIndex(bx, by);
-        w.blocks |= index < 64 ? BlockMask{1} << index : kAllBlocks;
-      }
+    if (blocks.x0 == blocks.x1 && blocks.y0 == blocks.y1) {  // (most pieces: one block)
+      const std::size_t index = buffer.blockIndex(blocks.x0, blocks.y0);
+      w.blocks = index < 64 ? BlockMask{1} << index : kAllBlocks;
+    } else {
+      for (int by = blocks.y0; by <= blocks.y1; ++by)
+        for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
+          const std::size_t index = buffer.blockIndex(bx, by);
+          w.blocks |= index < 64 ? BlockMask{1} << index : kAllBlocks;
+        }
+    }
     w.coverage = false;
     w.piece = pieces[i];
     ++n;
