@@ -41,6 +41,18 @@ inline bool blockDecides(const TriangleRaster& r, const BlockKeys& stored) {
   return kIsTest ? r.zHi < stored.nearest : r.zLo >= stored.farthest;
 }
 
+// What a small test (smallBox) learns from a block's stored keys before reading its pixels: its
+// keys decide it (nothing stored in front), it is occluded at its first pixel (the block is
+// uniform, or everything stored lies at or in front of the test's nearest key), or its pixels
+// must be read.
+enum class SmallTestInBlock { Decided, Occluded, ReadPixels };
+inline SmallTestInBlock smallTestInBlock(const CpuDepthBuffer& buffer, std::size_t index,
+                                         const TriangleRaster& r, const BlockKeys& stored) {
+  if (blockDecides<true>(r, stored)) return SmallTestInBlock::Decided;
+  return buffer.uniform(index) || r.zLo >= stored.farthest ? SmallTestInBlock::Occluded
+                                                            : SmallTestInBlock::ReadPixels;
+}
+
 // Whether block `index` of the window is in `mask` (masks cover windows of up to 64 blocks; a
 // larger window is drawn whole, with kAllBlocks).
 inline bool inMask(BlockMask mask, std::size_t index) {
@@ -410,19 +422,21 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
     for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
       const std::size_t index = buffer.blockIndex(bx, by);
       if (!inMask(mask, index)) continue;
-      if constexpr (kIsTest) resolveBlock(pending, index, r.zHi);
-      const BlockKeys stored = buffer.blockKeys(index, pass.sign);
-      if (blockDecides<kIsTest>(r, stored)) continue;
-      const BoxInBlock o = boxInBlock(r, bx, by);
-      const int x0 = r.x0 + o.dxA, x1 = r.x0 + o.dxB, y0 = r.y0 + o.dyA, y1 = r.y0 + o.dyB;
       if constexpr (kIsTest) {
-        if (buffer.uniform(index) || r.zLo >= stored.farthest) {
+        resolveBlock(pending, index, r.zHi);
+        const SmallTestInBlock found =
+            smallTestInBlock(buffer, index, r, buffer.blockKeys(index, pass.sign));
+        if (found == SmallTestInBlock::Decided) continue;
+        if (found == SmallTestInBlock::Occluded) {
           ++work.pixelsTested;
           return true;
         }
       } else {
+        if (blockDecides<kIsTest>(r, buffer.blockKeys(index, pass.sign))) continue;
         buffer.materialise(index);
       }
+      const BoxInBlock o = boxInBlock(r, bx, by);
+      const int x0 = r.x0 + o.dxA, x1 = r.x0 + o.dxB, y0 = r.y0 + o.dyA, y1 = r.y0 + o.dyB;
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
           const int at = inBlock(y) * kBlock + inBlock(x);
@@ -506,9 +520,10 @@ HWY_INLINE bool drawSetUp(CpuDepthBuffer& buffer, const RasterPass& pass, const 
         const std::size_t index = buffer.blockIndex(bx, by);
         if (!inMask(mask, index)) return false;
         if (!unresolved(pending, index)) {
-          const BlockKeys stored = buffer.blockKeys(index, pass.sign);
-          if (blockDecides<kIsTest>(r, stored)) return false;
-          if (buffer.uniform(index) || r.zLo >= stored.farthest) {
+          const SmallTestInBlock found =
+              smallTestInBlock(buffer, index, r, buffer.blockKeys(index, pass.sign));
+          if (found == SmallTestInBlock::Decided) return false;
+          if (found == SmallTestInBlock::Occluded) {
             ++work.pixelsTested;
             return true;
           }
