@@ -71,15 +71,27 @@ const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const CpuMe
                                                 std::uint32_t chunk) const {
   const Set& set = sets_[c.vertexSet];
   CpuScreenVertex* out = positions_.data() + set.firstVertex + bounds.chunkVertexStart[chunk];
-  once(states_[set.firstChunk + chunk], [&] {
-    const std::uint32_t begin = bounds.chunkVertexStart[chunk];
-    const std::uint32_t end = bounds.chunkVertexStart[chunk + 1];
-    const Eigen::Vector3f* from = bounds.chunkPositions.data();
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const ScreenPoint p = screenPoint(c.toScreen, from[i].x(), from[i].y(), from[i].z());
-      out[i - begin] = {p.x, p.y, p.k};
+  std::atomic<std::uint8_t>& state = states_[set.firstChunk + chunk];
+  switch (claim(state)) {
+    case Claim::Made:
+      break;
+    case Claim::Mine: {
+      const std::uint32_t begin = bounds.chunkVertexStart[chunk];
+      const std::uint32_t end = bounds.chunkVertexStart[chunk + 1];
+      const Eigen::Vector3f* from = bounds.chunkPositions.data();
+      for (std::uint32_t i = begin; i < end; ++i) {
+        const ScreenPoint p = screenPoint(c.toScreen, from[i].x(), from[i].y(), from[i].z());
+        out[i - begin] = {p.x, p.y, p.k};
+      }
+      state.store(kMade, std::memory_order_release);
+      state.notify_all();
+      break;
     }
-  });
+    case Claim::Others:  // wait for them
+      for (std::uint8_t now; (now = state.load(std::memory_order_acquire)) != kMade;)
+        state.wait(now, std::memory_order_acquire);
+      break;
+  }
   return out;
 }
 

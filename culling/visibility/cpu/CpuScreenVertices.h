@@ -58,12 +58,15 @@ class CpuScreenVertices {
     const std::size_t first = std::size_t{chunk} * kChunkParts;
     const std::size_t count = std::min<std::size_t>(kChunkParts, meshParts - first);
     std::atomic<std::uint8_t>& state = partStates_[set.firstChunk + chunk];
-    std::uint8_t now = state.load(std::memory_order_acquire);
-    if (now == kMade) return out;
-    if (now == kNotMade && state.compare_exchange_strong(now, kMaking, std::memory_order_acquire)) {
-      make(first, count, out);
-      state.store(kMade, std::memory_order_release);
-      return out;
+    switch (claim(state)) {
+      case Claim::Made:
+        return out;
+      case Claim::Mine:
+        make(first, count, out);
+        state.store(kMade, std::memory_order_release);
+        return out;
+      case Claim::Others:
+        break;
     }
     make(first, count, own.data());
     return own.data();
@@ -71,19 +74,15 @@ class CpuScreenVertices {
 
  private:
   enum State : std::uint8_t { kNotMade, kMaking, kMade };
-  // make() run by the first thread to claim `state`; the others wait until it is made.
-  template <class Make>
-  static void once(std::atomic<std::uint8_t>& state, Make&& make) {
+  // Who makes what `state` guards: made already; this thread, which claimed it now (it stores
+  // kMade once it is made); or another thread, making it.
+  enum class Claim { Made, Mine, Others };
+  static Claim claim(std::atomic<std::uint8_t>& state) {
     std::uint8_t now = state.load(std::memory_order_acquire);
-    if (now == kMade) return;
-    if (now == kNotMade && state.compare_exchange_strong(now, kMaking, std::memory_order_acquire)) {
-      make();
-      state.store(kMade, std::memory_order_release);
-      state.notify_all();
-      return;
-    }
-    while ((now = state.load(std::memory_order_acquire)) != kMade)
-      state.wait(now, std::memory_order_acquire);
+    if (now == kMade) return Claim::Made;
+    if (now == kNotMade && state.compare_exchange_strong(now, kMaking, std::memory_order_acquire))
+      return Claim::Mine;
+    return Claim::Others;
   }
   struct Set {
     std::size_t firstVertex = 0;  // in positions_, chunkVertices' layout
