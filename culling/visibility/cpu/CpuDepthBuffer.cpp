@@ -41,9 +41,9 @@ void CpuDepthBuffer::materialise(std::size_t index) {
 }
 
 float CpuDepthBuffer::at(int x, int y) const {
-  const std::size_t index = blockIndex(x / kBlock, y / kBlock);
+  const std::size_t index = blockIndex(blockOf(x), blockOf(y));
   if (uniform_[index]) return min_[index];
-  return block(index)[(y % kBlock) * kBlock + x % kBlock];
+  return block(index)[inBlock(y) * kBlock + inBlock(x)];
 }
 
 }  // namespace cdb

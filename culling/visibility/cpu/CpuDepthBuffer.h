@@ -21,6 +21,11 @@ class CpuDepthBuffer {
  public:
   static constexpr int kBlock = 8;
   static constexpr int kBlockPixels = kBlock * kBlock;
+  // The block column (row) of a pixel column (row) of the frame, and the pixel's place in that
+  // block's row (column): a shift and a mask, since pixels of the frame are never negative.
+  static constexpr int blockOf(int pixel) { return pixel >> 3; }
+  static constexpr int inBlock(int pixel) { return pixel & (kBlock - 1); }
+  static_assert(kBlock == 8, "blockOf shifts by 3");
 
   static constexpr std::uint32_t kNoObject = ~std::uint32_t{0};
 

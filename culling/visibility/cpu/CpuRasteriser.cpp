@@ -25,11 +25,8 @@ using D = hn::CappedTag<float, CpuDepthBuffer::kBlock>;
 constexpr int kBlock = CpuDepthBuffer::kBlock;
 constexpr bool kTest = true;
 
-// The block column (row) of a pixel column (row) of the frame, and the pixel's place in the block:
-// a shift and a mask, since pixel boxes are clipped to the frame and never negative.
-static_assert(kBlock == 8);
-inline int blockOf(int pixel) { return pixel >> 3; }
-inline int inBlock(int pixel) { return pixel & (kBlock - 1); }
+constexpr auto blockOf = CpuDepthBuffer::blockOf;  // (pixel boxes are clipped to the frame)
+constexpr auto inBlock = CpuDepthBuffer::inBlock;
 
 // Stored keys of a block: its bounds in the pass' key order.
 using BlockKeys = CpuDepthBuffer::BlockKeys;

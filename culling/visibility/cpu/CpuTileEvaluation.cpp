@@ -19,10 +19,11 @@ PixelRect tileRect(const CpuDepthBuffer& depth) {
 // The blocks of the window under `rect` (inside the window) as a mask: one run of bits a row.
 BlockMask blocksUnder(const CpuDepthBuffer& depth, const PixelRect& rect) {
   if (rect.x0 > rect.x1 || rect.y0 > rect.y1) return 0;
-  const int x0 = rect.x0 / kBlock - depth.blockX0(), x1 = rect.x1 / kBlock - depth.blockX0();
+  const int x0 = CpuDepthBuffer::blockOf(rect.x0) - depth.blockX0();
+  const int x1 = CpuDepthBuffer::blockOf(rect.x1) - depth.blockX0();
   const BlockMask row = ((BlockMask{2} << (x1 - x0)) - 1) << x0;
   BlockMask mask = 0;
-  for (int by = rect.y0 / kBlock; by <= rect.y1 / kBlock; ++by)
+  for (int by = CpuDepthBuffer::blockOf(rect.y0); by <= CpuDepthBuffer::blockOf(rect.y1); ++by)
     mask |= row << depth.blockIndex(depth.blockX0(), by);
   return mask;
 }
