@@ -216,6 +216,45 @@ TEST_P(OcclusionSemantics, BatchesAnswerEachPieceAgainstWhatWasWrittenBefore) {
   EXPECT_EQ(backend_->counters().queries, 11u);
 }
 
+// A node's test and write draw the same boxes, and CULLIDE's two passes of a view draw them
+// again (the cpu backend records such repeats once): boxes drawn again answer for where they are
+// drawn now, under another pose, in another view, or with other contents in the same array.
+TEST_P(OcclusionSemantics, BoxesDrawnAgainAnswerWhereTheyAreNow) {
+  std::vector<OrientedBox> boxes(1);  // of object 3, at the identity pose
+  boxes[0].halfExtents = Eigen::Vector3d(0.5, 0.5, 0.1);
+  boxes[0].center = Eigen::Vector3d(0, 0, -2.5);  // in front of C (z = -2), so of A
+
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  backend_->writeRange(wholeOf(scene_, 0));
+  const QueryIndex inFront = backend_->queryBoxes(3, boxes);
+  backend_->writeBoxes(3, boxes);
+  const QueryIndex cBehindTheBox = backend_->queryRange(wholeOf(scene_, 2));
+  std::vector<Pose> moved = test::identityPoses(scene_.objectCount());
+  moved[3].translation = Eigen::Vector3d(0, 0, 5);  // the box at z = 2.5, behind A
+  backend_->setPoses(moved);
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  backend_->writeRange(wholeOf(scene_, 0));
+  const QueryIndex movedBehind = backend_->queryBoxes(3, boxes);
+  backend_->setPoses(test::identityPoses(scene_.objectCount()));
+  backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  backend_->writeRange(wholeOf(scene_, 0));
+  const QueryIndex again = backend_->queryBoxes(3, boxes);
+  boxes[0].center.z() = 2.5;  // the same array, now behind A
+  const QueryIndex changed = backend_->queryBoxes(3, boxes);
+  backend_->beginPass(view(-Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+  backend_->writeRange(wholeOf(scene_, 0));
+  const QueryIndex otherView = backend_->queryBoxes(3, boxes);
+  std::vector<std::uint8_t> answers;
+  backend_->fetchResults(answers);
+  ASSERT_EQ(answers.size(), 6u);
+  EXPECT_EQ(answers[inFront], 1) << "the box in front of A";
+  EXPECT_EQ(answers[cBehindTheBox], 0) << "C behind the box written with the boxes just tested";
+  EXPECT_EQ(answers[movedBehind], 0) << "the same boxes, their object moved behind A";
+  EXPECT_EQ(answers[again], 1) << "back in front of A";
+  EXPECT_EQ(answers[changed], 0) << "the array's box moved behind A";
+  EXPECT_EQ(answers[otherView], 1) << "in front of A looking along -z";
+}
+
 // `copies` squares of half size h centred on (cx, cy), the first at z, each next dz farther, as
 // one mesh.
 Mesh squareStack(int copies, float cx, float cy, float z, float h, float dz) {

@@ -66,8 +66,17 @@ struct CpuChain {
   }
 };
 
+// A recorded box under the matrix of the commands that draw it: the unit cube's matrix into
+// screen space (what a tile sets the box's faces up from) and the box's screen extent.
+struct CpuBoxScreen {
+  ScreenMatrix cube;
+  double lo[3], hi[3];
+  bool finite = false;
+};
+
 struct CpuBins {
   std::vector<CpuItem> items;
+  std::vector<CpuBoxScreen> boxes;       // per CpuRecording::boxes
   std::vector<CpuItemParts> parts;       // of the chunk items (CpuItem::parts)
   std::vector<std::uint32_t> firstItem;  // per command, and one past the last
   std::vector<CpuChain> chains;          // the first chainCount are this recording's

@@ -42,14 +42,16 @@ constexpr std::array<std::array<int, 6>, 6> kCubeFaces = {{{0, 2, 6, 0, 6, 4},
 // over the part of the square it covers is reached on a back face (what a test needs), the nearest
 // on a front face (a write): the other faces change nothing. Faces seen edge-on (key not changing
 // along their normal) belong to both sets.
-std::array<bool, 6> decidingFaces(const ScreenMatrix& cube, CpuCommand::Role role) {
-  std::array<bool, 6> keep{};
+// (A mask, bit f for face f: an array of flags made here was read back through the stack as one
+// word, a store-forwarding stall on a fifth of boxPieces' time.)
+unsigned decidingFaces(const ScreenMatrix& cube, CpuCommand::Role role) {
+  unsigned keep = 0;
   const bool test = role == CpuCommand::Role::Test;
   for (int axis = 0; axis < 3; ++axis) {
     const double outward = cube(2, axis);  // how the key changes going out through the + face
     for (int positive = 0; positive < 2; ++positive) {
       const double away = positive ? outward : -outward;  // > 0: the face looks away (back)
-      keep[2 * axis + positive] = away == 0.0 || (test ? away > 0.0 : away < 0.0);
+      if (away == 0.0 || (test ? away > 0.0 : away < 0.0)) keep |= 1u << (2 * axis + positive);
     }
   }
   return keep;
@@ -113,20 +115,19 @@ ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox&
   return m;
 }
 
-void boxPieces(const CpuRecording& recording, const CpuCommand& c, std::uint32_t box,
-               bool conservative, CpuPieces& out) {
-  const ScreenMatrix cube = cubeToScreen(c.toScreen, recording.boxes[box]);
+void boxPieces(const ScreenMatrix& cube, CpuCommand::Role role, bool conservative,
+               CpuPieces& out) {
   std::array<Eigen::Vector3d, 8> corner;
   for (int i = 0; i < 8; ++i) {
     const ScreenPoint p =
         screenPoint(cube, (i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
     corner[i] = {p.x, p.y, p.k};
   }
-  const std::array<bool, 6> keep = decidingFaces(cube, c.role);
+  const unsigned keep = decidingFaces(cube, role);
   out.areQuads = conservative;
   std::size_t n = 0;
   for (int f = 0; f < 6; ++f) {
-    if (!keep[f]) continue;
+    if ((keep >> f & 1u) == 0) continue;
     const auto& face = kCubeFaces[f];
     if (conservative) {
       const int around[4] = {face[0], face[1], face[2], face[5]};

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 
 #include "core/Errors.h"
@@ -143,11 +144,30 @@ CpuCommand& CpuRasterBackend::recordListed(CpuCommand::Role role, ObjectId objec
 
 CpuCommand& CpuRasterBackend::recordBoxes(CpuCommand::Role role, ObjectId object,
                                           std::span<const OrientedBox> boxes) {
-  std::vector<OrientedBox>& all = open_->recording.boxes;
+  CpuRecording& recording = open_->recording;
+  std::vector<OrientedBox>& all = recording.boxes;
   CpuCommand& c = record(role, CpuCommand::Source::Boxes, object);
-  c.first = static_cast<std::uint32_t>(all.size());
   c.count = static_cast<std::uint32_t>(boxes.size());
-  all.insert(all.end(), boxes.begin(), boxes.end());
+  // The same boxes as the object's last box command under the same matrix (a node's test and
+  // write, both passes of a view) are recorded once: binning then bounds them, and a tile sets
+  // them up, from one screen form. Compared bit for bit, so every piece is the same.
+  static_assert(sizeof(OrientedBox) == 15 * sizeof(double), "a box has no padding to compare");
+  std::vector<std::uint32_t>& last = recording.lastBoxCommand;
+  if (last.size() <= object) last.resize(scene_->objectCount(), 0);
+  const auto index = static_cast<std::uint32_t>(recording.commands.size() - 1);
+  if (last[object] != 0) {
+    const CpuCommand& earlier = recording.commands[last[object] - 1];
+    c.sharesBoxes =
+        earlier.count == c.count &&
+        std::memcmp(earlier.toScreen.data(), c.toScreen.data(), sizeof(ScreenMatrix)) == 0 &&
+        std::memcmp(all.data() + earlier.first, boxes.data(), boxes.size_bytes()) == 0;
+    if (c.sharesBoxes) c.first = earlier.first;
+  }
+  last[object] = index + 1;
+  if (!c.sharesBoxes) {
+    c.first = static_cast<std::uint32_t>(all.size());
+    all.insert(all.end(), boxes.begin(), boxes.end());
+  }
   ++counters_.draws;
   counters_.trianglesDrawn += 12u * boxes.size();  // a box is the cube's 12 triangles, as on GL
   return c;

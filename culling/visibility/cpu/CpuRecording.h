@@ -23,7 +23,8 @@ using ScreenMatrix = Eigen::Matrix<double, 3, 4>;
 struct CpuCommand {
   enum class Role : std::uint8_t { Test, Write };
   // Range: the whole mesh (first 0, count its triangles); Listed: count mesh triangles listed at
-  // CpuRecording::listed[first...]; Boxes: count boxes at CpuRecording::boxes[first...]. Once in
+  // CpuRecording::listed[first...]; Boxes: count boxes at CpuRecording::boxes[first...] (those of
+  // an earlier command when it drew the same boxes under the same matrix: sharesBoxes). Once in
   // draw order (putInDrawOrder) a command's triangles are positions in its mesh's draw order
   // (CpuMeshBounds), and its answers are numbered in that order until answersInIssueOrder.
   enum class Source : std::uint8_t { Range, Listed, Boxes };
@@ -41,6 +42,9 @@ struct CpuCommand {
   std::uint32_t count = 0;
   QueryIndex query = 0;  // the (first) answer's index
   std::uint32_t vertexSet = 0;  // Range and Listed: its CpuScreenVertices set (set at a run)
+  // Boxes: recorded by an earlier command of the recording (the same object's boxes, bit for bit,
+  // under the same matrix: a node's test and write, in both of CULLIDE's passes of a view).
+  bool sharesBoxes = false;
   ScreenMatrix toScreen = ScreenMatrix::Zero();
 };
 
@@ -63,9 +67,12 @@ struct CpuRecording {
   // In draw order: per entry of `listed`, its offset in its command as issued.
   std::vector<std::uint32_t> listedOffset;
   std::vector<OrientedBox> boxes;
+  // Per object: 1 + the last command that recorded boxes of it (0: none yet).
+  std::vector<std::uint32_t> lastBoxCommand;
 
   void clear() {
     passes.clear(), commands.clear(), listed.clear(), listedOffset.clear(), boxes.clear();
+    lastBoxCommand.clear();
   }
   [[nodiscard]] bool empty() const { return passes.empty(); }
   // Sets each pass' endCommand (once every command is recorded).

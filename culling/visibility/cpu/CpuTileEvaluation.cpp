@@ -48,7 +48,7 @@ void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
   const CpuCommand& c = recording.commands[item.command];
   const RasterPass& raster = recording.passes[item.pass].raster;
   if (c.source == CpuCommand::Source::Boxes)
-    boxPieces(recording, c, item.first, raster.conservative, pieces);
+    boxPieces(run.bins.boxes[item.first].cube, c.role, raster.conservative, pieces);
   else
     chunkPieces(run, scene.bounds[c.mesh], c, item, tileRect(depth), raster.marginPx, pieces);
 }
@@ -314,8 +314,16 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
   const std::span<const std::uint32_t> items = run.bins.chains[chain].itemsOf(tile);
   for (std::size_t n = 0; n < items.size(); ++n) {
     const std::uint32_t i = items[n];
-    // (A tile's items lie scattered in the recording's: the next few are fetched ahead.)
-    if (n + 4 < items.size()) __builtin_prefetch(&run.bins.items[items[n + 4]]);
+    // (A tile's items lie scattered in the recording's: the next few are fetched ahead, and the
+    // screen form of a box among them once its item is at hand.)
+    if (n + 8 < items.size()) __builtin_prefetch(&run.bins.items[items[n + 8]]);
+    if (n + 4 < items.size()) {
+      const CpuItem& ahead = run.bins.items[items[n + 4]];
+      if (run.recording.commands[ahead.command].source == CpuCommand::Source::Boxes) {
+        const auto* cube = reinterpret_cast<const char*>(&run.bins.boxes[ahead.first].cube);
+        __builtin_prefetch(cube), __builtin_prefetch(cube + sizeof(ScreenMatrix) - 1);
+      }
+    }
     const CpuItem& item = run.bins.items[i];
     const RasterPass& raster = run.recording.passes[item.pass].raster;
     enterPass(at, scene, raster, work);
