@@ -151,12 +151,15 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
   base.answerEach = base.test && c.answerEach;
   const auto answerOf = [&](std::uint32_t offset) { return c.query + (c.answerEach ? offset : 0); };
   if (c.source == CpuCommand::Source::Boxes) {
+    // (A command that recorded its boxes puts them in screen space; one sharing them finds them
+    // there: binning runs those after the others.)
     for (std::uint32_t b = n0; b < n1; ++b) {
       CpuItem& item = items[b] = base;
-      item.first = c.first + b, item.count = 1, item.answer = answerOf(b);
-      const CpuBoxScreen& box = bins.boxes[item.first];
-      const ScreenExtent e{{box.lo[0], box.lo[1], box.lo[2]}, {box.hi[0], box.hi[1], box.hi[2]}};
-      boundItem(e, box.finite, raster, item);
+      item.first = c.first + b, item.count = 1, item.answer = answerOf(b), item.box = true;
+      ScreenMatrix& cube = bins.boxes[item.first].cube;
+      if (!c.sharesBoxes) cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
+      const ScreenExtent e = extentOf(cube, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
+      boundItem(e, e.finite(), raster, item);
     }
     return;
   }
@@ -209,18 +212,6 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       parts[p] = &listedParts[p];
     }
     boundChunk(parts, raster, item, bins.parts[item.parts]);
-  }
-}
-
-// Boxes [n0, n1) of box command `c` (one that recorded its own) under its matrix.
-void screenBoxes(const CpuRecording& recording, const CpuCommand& c, std::uint32_t n0,
-                 std::uint32_t n1, CpuBins& bins) {
-  for (std::uint32_t b = c.first + n0; b < c.first + n1; ++b) {
-    CpuBoxScreen& box = bins.boxes[b];
-    box.cube = cubeToScreen(c.toScreen, recording.boxes[b]);
-    const ScreenExtent e = extentOf(box.cube, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
-    for (int i = 0; i < 3; ++i) box.lo[i] = e.lo[i], box.hi[i] = e.hi[i];
-    box.finite = e.finite();
   }
 }
 
@@ -339,19 +330,22 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
     for (std::uint32_t n0 = 0; n0 < n; n0 += kItemsPerTask)
       bins.itemTasks.push_back({i, n0, std::min(n, n0 + kItemsPerTask)});
   }
-  // Each recorded box's screen form first: commands sharing boxes bound their items from it.
-  bins.boxes.resize(recording.boxes.size());
-  forEachIndex(arena, bins.itemTasks.size(), [&](std::size_t t) {
-    const auto [i, n0, n1] = bins.itemTasks[t];
-    const CpuCommand& c = recording.commands[i];
-    if (c.source == CpuCommand::Source::Boxes && !c.sharesBoxes)
-      screenBoxes(recording, c, n0, n1, bins);
+  // Commands that share boxes last: their boxes' screen form is made by the command that
+  // recorded them.
+  std::size_t sharing = 0;
+  for (const auto& task : bins.itemTasks) sharing += recording.commands[task[0]].sharesBoxes;
+  std::stable_partition(bins.itemTasks.begin(), bins.itemTasks.end(), [&](const auto& task) {
+    return !recording.commands[task[0]].sharesBoxes;
   });
-  forEachIndex(arena, bins.itemTasks.size(), [&](std::size_t t) {
+  bins.boxes.resize(recording.boxes.size());
+  const auto makeTask = [&](std::size_t t) {
     const auto [i, n0, n1] = bins.itemTasks[t];
     makeItems(recording, bounds, vertices, i, passOf[i], bins.items.data() + bins.firstItem[i],
               bins, bins.firstParts[i], n0, n1);
-  });
+  };
+  const std::size_t owning = bins.itemTasks.size() - sharing;
+  forEachIndex(arena, owning, makeTask);
+  forEachIndex(arena, sharing, [&](std::size_t t) { makeTask(owning + t); });
   forEachIndex(arena, chains,
                [&](std::size_t c) { binChain(recording, bins, arena, bins.chains[c]); });
 }

@@ -30,6 +30,7 @@ struct CpuItem {
   std::uint32_t pass = 0;
   bool test = false;
   bool answerEach = false;  // a test answering per triangle (answer + i for its i-th)
+  bool box = false;         // one box (else a chunk of triangles)
   // Every pixel any of its pieces covers lies in `rect` (empty: none in the frame), and every key
   // it tests or writes there (its offsets toward "occluded" included) in [kLo, kHi].
   PixelRect rect;
@@ -67,11 +68,9 @@ struct CpuChain {
 };
 
 // A recorded box under the matrix of the commands that draw it: the unit cube's matrix into
-// screen space (what a tile sets the box's faces up from) and the box's screen extent.
+// screen space, which binning bounds the box's items from and a tile sets its faces up from.
 struct CpuBoxScreen {
   ScreenMatrix cube;
-  double lo[3], hi[3];
-  bool finite = false;
 };
 
 struct CpuBins {

@@ -319,7 +319,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     if (n + 8 < items.size()) __builtin_prefetch(&run.bins.items[items[n + 8]]);
     if (n + 4 < items.size()) {
       const CpuItem& ahead = run.bins.items[items[n + 4]];
-      if (run.recording.commands[ahead.command].source == CpuCommand::Source::Boxes) {
+      if (ahead.box) {
         const auto* cube = reinterpret_cast<const char*>(&run.bins.boxes[ahead.first].cube);
         __builtin_prefetch(cube), __builtin_prefetch(cube + sizeof(ScreenMatrix) - 1);
       }
