@@ -80,10 +80,12 @@ PixelRect pixelsOf(const ScreenExtent& e, bool finite, const RasterPass& pass) {
   return {x0, y0, x1, y1};
 }
 
-// An item's rectangle and key range: keys widened far beyond the rounding of the transforms, and
+// An item's rectangle (`rect` when given: that of an item with the same extent in a pass of the
+// same pixel grid) and key range: keys widened far beyond the rounding of the transforms, and
 // moved by the pass' offsets as the set-up moves them.
-void boundItem(const ScreenExtent& e, bool finite, const RasterPass& pass, CpuItem& item) {
-  item.rect = pixelsOf(e, finite, pass);
+void boundItem(const ScreenExtent& e, bool finite, const RasterPass& pass, CpuItem& item,
+               const PixelRect* rect = nullptr) {
+  item.rect = rect != nullptr ? *rect : pixelsOf(e, finite, pass);
   if (!finite) {
     item.kLo = pass.keyLo, item.kHi = pass.keyHi;
     return;
@@ -151,15 +153,25 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
   base.answerEach = base.test && c.answerEach;
   const auto answerOf = [&](std::uint32_t offset) { return c.query + (c.answerEach ? offset : 0); };
   if (c.source == CpuCommand::Source::Boxes) {
-    // (A command that recorded its boxes puts them in screen space; one sharing them finds them
-    // there: binning runs those after the others.)
+    // A command that recorded its boxes puts them in screen space; one sharing them finds them
+    // there (binning runs those after the others), and their rectangles too when its pass has the
+    // same pixel grid.
+    const CpuItem* ownerItems = nullptr;
+    if (c.sharesBoxes()) {
+      const RasterPass& owner = recording.passes[bins.passOf[c.boxesOf]].raster;
+      if (owner.resolution == raster.resolution && owner.marginPx == raster.marginPx)
+        ownerItems = bins.items.data() + bins.firstItem[c.boxesOf];
+    }
     for (std::uint32_t b = n0; b < n1; ++b) {
       CpuItem& item = items[b] = base;
       item.first = c.first + b, item.count = 1, item.answer = answerOf(b), item.box = true;
       ScreenMatrix& cube = bins.boxes[item.first].cube;
-      if (!c.sharesBoxes) cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
+      if (!c.sharesBoxes()) cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
       const ScreenExtent e = extentOf(cube, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
-      boundItem(e, e.finite(), raster, item);
+      if (ownerItems != nullptr)
+        boundItem(e, e.finite(), raster, item, &ownerItems[b].rect);
+      else
+        boundItem(e, e.finite(), raster, item);
     }
     return;
   }
@@ -333,9 +345,9 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
   // Commands that share boxes last: their boxes' screen form is made by the command that
   // recorded them.
   std::size_t sharing = 0;
-  for (const auto& task : bins.itemTasks) sharing += recording.commands[task[0]].sharesBoxes;
+  for (const auto& task : bins.itemTasks) sharing += recording.commands[task[0]].sharesBoxes();
   std::stable_partition(bins.itemTasks.begin(), bins.itemTasks.end(), [&](const auto& task) {
-    return !recording.commands[task[0]].sharesBoxes;
+    return !recording.commands[task[0]].sharesBoxes();
   });
   bins.boxes.resize(recording.boxes.size());
   const auto makeTask = [&](std::size_t t) {

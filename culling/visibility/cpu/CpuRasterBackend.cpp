@@ -157,14 +157,15 @@ CpuCommand& CpuRasterBackend::recordBoxes(CpuCommand::Role role, ObjectId object
   const auto index = static_cast<std::uint32_t>(recording.commands.size() - 1);
   if (last[object] != 0) {
     const CpuCommand& earlier = recording.commands[last[object] - 1];
-    c.sharesBoxes =
-        earlier.count == c.count &&
+    if (earlier.count == c.count &&
         std::memcmp(earlier.toScreen.data(), c.toScreen.data(), sizeof(ScreenMatrix)) == 0 &&
-        std::memcmp(all.data() + earlier.first, boxes.data(), boxes.size_bytes()) == 0;
-    if (c.sharesBoxes) c.first = earlier.first;
+        std::memcmp(all.data() + earlier.first, boxes.data(), boxes.size_bytes()) == 0) {
+      c.first = earlier.first;
+      c.boxesOf = earlier.sharesBoxes() ? earlier.boxesOf : last[object] - 1;
+    }
   }
   last[object] = index + 1;
-  if (!c.sharesBoxes) {
+  if (!c.sharesBoxes()) {
     c.first = static_cast<std::uint32_t>(all.size());
     all.insert(all.end(), boxes.begin(), boxes.end());
   }
