@@ -165,13 +165,10 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
     for (std::uint32_t b = n0; b < n1; ++b) {
       CpuItem& item = items[b] = base;
       item.first = c.first + b, item.count = 1, item.answer = answerOf(b), item.box = true;
-      ScreenMatrix& cube = bins.boxes[item.first].cube;
+      ScreenMatrix& cube = bins.boxCubes[item.first];
       if (!c.sharesBoxes()) cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
       const ScreenExtent e = extentOf(cube, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
-      if (ownerItems != nullptr)
-        boundItem(e, e.finite(), raster, item, &ownerItems[b].rect);
-      else
-        boundItem(e, e.finite(), raster, item);
+      boundItem(e, e.finite(), raster, item, ownerItems ? &ownerItems[b].rect : nullptr);
     }
     return;
   }
@@ -344,20 +341,19 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
   }
   // Commands that share boxes last: their boxes' screen form is made by the command that
   // recorded them.
-  std::size_t sharing = 0;
-  for (const auto& task : bins.itemTasks) sharing += recording.commands[task[0]].sharesBoxes();
-  std::stable_partition(bins.itemTasks.begin(), bins.itemTasks.end(), [&](const auto& task) {
-    return !recording.commands[task[0]].sharesBoxes();
-  });
-  bins.boxes.resize(recording.boxes.size());
+  const auto owning = static_cast<std::size_t>(
+      std::stable_partition(
+          bins.itemTasks.begin(), bins.itemTasks.end(),
+          [&](const auto& task) { return !recording.commands[task[0]].sharesBoxes(); }) -
+      bins.itemTasks.begin());
+  bins.boxCubes.resize(recording.boxes.size());
   const auto makeTask = [&](std::size_t t) {
     const auto [i, n0, n1] = bins.itemTasks[t];
     makeItems(recording, bounds, vertices, i, passOf[i], bins.items.data() + bins.firstItem[i],
               bins, bins.firstParts[i], n0, n1);
   };
-  const std::size_t owning = bins.itemTasks.size() - sharing;
   forEachIndex(arena, owning, makeTask);
-  forEachIndex(arena, sharing, [&](std::size_t t) { makeTask(owning + t); });
+  forEachIndex(arena, bins.itemTasks.size() - owning, [&](std::size_t t) { makeTask(owning + t); });
   forEachIndex(arena, chains,
                [&](std::size_t c) { binChain(recording, bins, arena, bins.chains[c]); });
 }

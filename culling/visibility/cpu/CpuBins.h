@@ -67,15 +67,12 @@ struct CpuChain {
   }
 };
 
-// A recorded box under the matrix of the commands that draw it: the unit cube's matrix into
-// screen space, which binning bounds the box's items from and a tile sets its faces up from.
-struct CpuBoxScreen {
-  ScreenMatrix cube;
-};
-
 struct CpuBins {
   std::vector<CpuItem> items;
-  std::vector<CpuBoxScreen> boxes;       // per CpuRecording::boxes
+  // Per CpuRecording::boxes, under the matrix of the commands that draw it: the unit cube's
+  // matrix into screen space, which binning bounds the box's items from and a tile sets its faces
+  // up from.
+  std::vector<ScreenMatrix> boxCubes;
   std::vector<CpuItemParts> parts;       // of the chunk items (CpuItem::parts)
   std::vector<std::uint32_t> firstItem;  // per command, and one past the last
   std::vector<CpuChain> chains;          // the first chainCount are this recording's

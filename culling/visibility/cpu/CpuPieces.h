@@ -33,7 +33,7 @@ void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuComman
 // A box's matrix from the unit cube [-1, 1]^3 to the screen.
 [[nodiscard]] ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box);
 
-// The faces of a box (`cube`: the unit cube's matrix into screen space, CpuBoxScreen) that decide
+// The faces of a box (`cube`: the unit cube's matrix into screen space, CpuBins::boxCubes) that decide
 // the answer of a test or the depths of a write (`role`): as quads in conservative passes, as
 // triangles in raw ones (whose pixel-centre rule is a triangle's).
 void boxPieces(const ScreenMatrix& cube, CpuCommand::Role role, bool conservative,

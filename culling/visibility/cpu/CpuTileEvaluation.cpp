@@ -48,7 +48,7 @@ void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
   const CpuCommand& c = recording.commands[item.command];
   const RasterPass& raster = recording.passes[item.pass].raster;
   if (c.source == CpuCommand::Source::Boxes)
-    boxPieces(run.bins.boxes[item.first].cube, c.role, raster.conservative, pieces);
+    boxPieces(run.bins.boxCubes[item.first], c.role, raster.conservative, pieces);
   else
     chunkPieces(run, scene.bounds[c.mesh], c, item, tileRect(depth), raster.marginPx, pieces);
 }
@@ -320,7 +320,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     if (n + 4 < items.size()) {
       const CpuItem& ahead = run.bins.items[items[n + 4]];
       if (ahead.box) {
-        const auto* cube = reinterpret_cast<const char*>(&run.bins.boxes[ahead.first].cube);
+        const auto* cube = reinterpret_cast<const char*>(&run.bins.boxCubes[ahead.first]);
         __builtin_prefetch(cube), __builtin_prefetch(cube + sizeof(ScreenMatrix) - 1);
       }
     }
