@@ -302,8 +302,11 @@ SceneGeometry randomScene(std::mt19937& rng, int objects) {
   return test::sceneOf(std::move(meshes));
 }
 
-Stream randomStream(unsigned seed, const SceneGeometry& scene) {
-  return [seed, &scene](CpuRasterBackend& backend, Outcome& out) {
+// Random draws of every kind in passes of every depth use but the order-independent one, with
+// fetches between them; with `orderIndependent`, order-independent passes instead, each its writes
+// then its tests (a test of an object reads no write of its own there).
+Stream randomStream(unsigned seed, const SceneGeometry& scene, bool orderIndependent = false) {
+  return [seed, &scene, orderIndependent](CpuRasterBackend& backend, Outcome& out) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     const auto pick = [&](int n) { return static_cast<int>(rng() % static_cast<unsigned>(n)); };
@@ -328,14 +331,15 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene) {
       }
       return boxes;
     };
-    const auto draws = [&](int count) {
+    // Draws of the kinds [kind0, kind0 + kinds) of the switch below.
+    const auto drawsOf = [&](int count, int kind0, int kinds) {
       for (int d = 0; d < count; ++d) {
         const auto o = static_cast<ObjectId>(pick(static_cast<int>(objects)));
         const auto triangles = static_cast<std::uint32_t>(scene.meshOf(o).triangleCount());
         const std::uint32_t first = static_cast<std::uint32_t>(pick(static_cast<int>(triangles)));
         const MeshRange part{
             o, first, static_cast<std::uint32_t>(pick(static_cast<int>(triangles - first) + 1))};
-        switch (pick(9)) {
+        switch (kind0 + pick(kinds)) {
           case 0:
             backend.queryRange(test::wholeOf(scene, o));
             break;
@@ -366,7 +370,19 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene) {
         }
       }
     };
+    const auto draws = [&](int count) { drawsOf(count, 0, 9); };
     for (int round = 0; round < 8; ++round) {
+      if (orderIndependent) {
+        const Eigen::Vector3d direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+        const double half = pick(2) ? 1.6 : 0.3 + 0.3 * std::abs(u(rng));
+        const Aabb bounds(Eigen::Vector3d::Constant(-half), Eigen::Vector3d::Constant(half));
+        lastResolution = resolutions[pick(4)];
+        backend.beginPass({direction, bounds, lastResolution}, DepthUse::OrderIndependent);
+        drawsOf(10 + pick(30), 5, 3);  // writes
+        drawsOf(10 + pick(30), 0, 5);  // tests
+        fetchInto(backend, out);
+        continue;
+      }
       const Eigen::Vector3d direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
       const int resolution = resolutions[pick(4)];
       // Views holding every object, or a part (the rest off-screen, or clamped to the depth
@@ -394,6 +410,20 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene) {
     fetchInto(backend, out);
     readBuffer(backend, lastResolution, out);
   };
+}
+
+TEST_P(CpuDemandEvaluation, RandomOrderIndependentPassesAnswerAsPlainEvaluation) {
+  for (unsigned seed : {5u, 6u, 7u}) {
+    std::mt19937 rng(seed * 7919u);
+    const SceneGeometry scene = randomScene(rng, 24);
+    const std::vector<Pose> poses = posesAround(seed, scene.objectCount(), 0.8);
+    for (bool conservative : {true, false}) {
+      SCOPED_TRACE(testing::Message()
+                   << (conservative ? "conservative" : "raw") << ", seed " << seed);
+      expectBothAnswers(
+          expectSameAsPlain(scene, poses, randomStream(seed, scene, true), conservative));
+    }
+  }
 }
 
 TEST_P(CpuDemandEvaluation, RandomStreamsAnswerAsPlainEvaluation) {

@@ -123,6 +123,7 @@ void drawAllPending(TileAt tile, const CpuScene& scene, CpuTileWork& work) {
 void emptyBlock(CpuTileState& state, std::size_t b) {
   state.pendingIn.clear(b);
   state.pendingNearest[b] = std::numeric_limits<float>::infinity();
+  state.pendingOthers[b] = {};
   state.pendingBlocks &= ~(BlockMask{1} << b);
 }
 
@@ -155,10 +156,10 @@ void drawBlockPending(TileAt tile, const CpuScene& scene, std::size_t b, CpuTile
   emptyBlock(tile.state, b);
 }
 
-// A write made pending in its blocks; a block with `mostInBlock` pending has them drawn instead,
-// which leaves the same depths.
+// A write made pending in its blocks (of an order-independent pass: `orderIndependent`); a block
+// with `mostInBlock` pending has them drawn instead, which leaves the same depths.
 void addPending(TileAt tile, const CpuScene& scene, const CpuPendingWrite& write,
-                std::size_t mostInBlock, CpuTileWork& work) {
+                bool orderIndependent, std::size_t mostInBlock, CpuTileWork& work) {
   CpuTileState& state = tile.state;
   const auto index = static_cast<std::uint32_t>(state.pending.size());
   state.pending.push_back(write);
@@ -167,6 +168,8 @@ void addPending(TileAt tile, const CpuScene& scene, const CpuPendingWrite& write
   for (BlockMask m = write.remaining; m != 0; m &= m - 1) {
     const auto b = static_cast<std::size_t>(std::countr_zero(m));
     state.pendingIn.push(b, index);
+    if (orderIndependent)
+      state.pendingOthers[b].add(state.pendingNearest[b], write.kLo, write.object);
     state.pendingNearest[b] = std::min(state.pendingNearest[b], write.kLo);
     if (state.pendingIn.size(b) >= mostInBlock) drawBlockPending(tile, scene, b, work);
   }
@@ -184,10 +187,10 @@ BlockMask blocksReadingPending(const CpuTileState& state, BlockMask blocks, floa
   BlockMask reading = 0;
   for (BlockMask m = blocks & state.pendingBlocks; m != 0; m &= m - 1) {
     const auto b = static_cast<std::size_t>(std::countr_zero(m));
-    if (state.pendingNearest[b] > kHi) continue;
-    if (!orderIndependent || state.pendingIn.any(b, [&](std::uint32_t i) {
-          return canOcclude(state.pending[i], kHi, orderIndependent, object);
-        }))
+    // (In an order-independent pass the object's own writes do not count: when it has the
+    // nearest key, the other objects' nearest decides.)
+    const bool othersOnly = orderIndependent && state.pendingOthers[b].object == object;
+    if ((othersOnly ? state.pendingOthers[b].nearest : state.pendingNearest[b]) <= kHi)
       reading |= BlockMask{1} << b;
   }
   return reading;
@@ -239,11 +242,13 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
   const BlockMask bit = BlockMask{1} << block;
   bool left = false;
   float nearest = std::numeric_limits<float>::infinity();
+  CpuPendingOthers others;
   state.pendingIn.keepIf(block, [&](std::uint32_t i) {
     CpuPendingWrite& p = state.pending[i];
     if (!canOcclude(p, zHi, t.orderIndependent, t.item.object)) {
       // Behind this piece; maybe not behind a later one of the test.
       left = left || canOcclude(p, t.item.kHi, t.orderIndependent, t.item.object);
+      if (t.orderIndependent) others.add(nearest, p.kLo, p.object);
       nearest = std::min(nearest, p.kLo);
       return true;
     }
@@ -251,6 +256,7 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
     return false;
   });
   state.pendingNearest[block] = nearest;
+  state.pendingOthers[block] = others;
   if (state.pendingIn.size(block) == 0) state.pendingBlocks &= ~bit;
   return left;
 }
@@ -344,7 +350,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
         clearPending(at);
       }
       addPending(at, scene, {blocks, item.kLo, item.kHi, item.object, &run, i},
-                 evaluation.mostPendingInBlock, work);
+                 raster.orderIndependent, evaluation.mostPendingInBlock, work);
       if (state.pendingBlocks == 0) clearPending(at);
       continue;
     }

@@ -146,13 +146,32 @@ class CpuBlockLists {
   std::array<std::vector<std::uint32_t>, kBlocks> more_;
 };
 
+// In an order-independent pass, what a block's list needs besides the nearest key of its pending
+// writes to say without a scan whether one of another object than a test's can lie in front of it:
+// the object of a write with that key, and the nearest key of the other objects' writes.
+struct CpuPendingOthers {
+  std::uint32_t object = 0;
+  float nearest = std::numeric_limits<float>::infinity();
+  // A write of `o` with key `k` joins a list whose nearest key was `key`.
+  void add(float key, float k, std::uint32_t o) {
+    if (o == object) return;
+    if (k < key) {  // (`key` is the nearest of all, and its object is not o)
+      nearest = key, object = o;
+    } else {
+      nearest = std::min(nearest, k);
+    }
+  }
+};
+
 // A tile of a chain's depth buffer: the depths resolved so far and the writes still pending.
 struct CpuTileState {
   static constexpr int kBlocks = CpuBlockLists::kBlocks;  // at most, in a demand-driven tile
   CpuDepthBuffer depth;
   // Writes not drawn everywhere yet, in issue order (an entry stays until nothing is pending), and
   // per block of the tile those not drawn there yet (indices into `pending`, ascending) with the
-  // nearest key among them (+infinity: none).
+  // nearest key among them (+infinity: none), and in an order-independent pass the nearest of the
+  // other objects' (kept for every write there: such a pass clears, so a chain's passes are all
+  // order-independent or none are).
   std::vector<CpuPendingWrite> pending;
   CpuBlockLists pendingIn;
   std::array<float, kBlocks> pendingNearest = [] {
@@ -160,6 +179,7 @@ struct CpuTileState {
     none.fill(std::numeric_limits<float>::infinity());
     return none;
   }();
+  std::array<CpuPendingOthers, kBlocks> pendingOthers{};
   BlockMask pendingBlocks = 0;  // blocks with a write pending
   float sign = 0.f;             // the key order of the pass of its last item (0: none yet)
   std::uint64_t chain = 0;      // which chain's tile it holds (0: none)
