@@ -1,6 +1,7 @@
 #include "culling/strategies/CullideWithHierarchy.h"
 
 #include <algorithm>
+#include <span>
 
 #include "culling/bvh/NodeDraws.h"
 
@@ -28,19 +29,32 @@ void CullideWithHierarchy::pruneAlong(std::vector<ObjectId>& objects, int axis,
   for (ObjectId o : objects) bounds.extend(frontier_.worldBounds(o, poses[o]));
   const ViewSpec view{Eigen::Vector3d::Unit(axis), bounds, options_.resolution};
 
+  // Each object's node boxes, gathered once for its four draws.
+  boxes_.clear();
+  boxesStart_.resize(objects.size() + 1);
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    boxesStart_[i] = boxes_.size();
+    appendNodeBoxes(frontier_, objects[i], boxes_);
+  }
+  boxesStart_[objects.size()] = boxes_.size();
+  const auto boxesOf = [&](std::size_t i) {
+    return std::span<const OrientedBox>(boxes_).subspan(boxesStart_[i],
+                                                        boxesStart_[i + 1] - boxesStart_[i]);
+  };
   // Pass 1 tests each node against the objects drawn before its own, pass 2 (reverse order,
-  // fresh depth) against those after it; both passes are issued before the one fetch.
+  // fresh depth) against those after it; both passes are issued before the one fetch. An
+  // object's nodes are all queried before any is written.
   std::vector<QueryIndex> first1(objects.size());
   std::vector<QueryIndex> first2(objects.size());
   backend_->beginPass(view, DepthUse::Fresh);
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    first1[i] = queryNodes(*backend_, frontier_, objects[i], boxes_);
-    writeNodes(*backend_, frontier_, objects[i], boxes_);
+    first1[i] = backend_->queryBoxes(objects[i], boxesOf(i));
+    backend_->writeBoxes(objects[i], boxesOf(i));
   }
   backend_->beginPass(view, DepthUse::Fresh);
   for (std::size_t i = objects.size(); i-- > 0;) {
-    first2[i] = queryNodes(*backend_, frontier_, objects[i], boxes_);
-    writeNodes(*backend_, frontier_, objects[i], boxes_);
+    first2[i] = backend_->queryBoxes(objects[i], boxesOf(i));
+    backend_->writeBoxes(objects[i], boxesOf(i));
   }
   backend_->fetchResults(visible_);
 

@@ -38,7 +38,8 @@ class CullideWithHierarchy final : public CullingStrategy {
   SceneHierarchies hierarchies_;
   NodeFrontier frontier_;
   std::vector<std::uint8_t> visible_;  // query answers, reused across frames
-  std::vector<OrientedBox> boxes_;     // one object's node boxes, for a batch
+  std::vector<OrientedBox> boxes_;     // the objects' node boxes along one axis, in turn
+  std::vector<std::size_t> boxesStart_;  // where each object's begin in boxes_, and the end
   std::vector<std::uint8_t> keep_;     // per active node of one object
 };
 
