@@ -181,17 +181,21 @@ bool canOcclude(const CpuPendingWrite& p, float zHi, bool orderIndependent, std:
   return p.kLo <= zHi && !(orderIndependent && p.object == object);
 }
 
+// The nearest key of the writes pending in block `b` that a test of `object` reads (in an
+// order-independent pass not its own: when it has the nearest key, the other objects' nearest).
+float nearestRead(const CpuTileState& state, std::size_t b, bool orderIndependent,
+                  std::uint32_t object) {
+  return orderIndependent && state.pendingOthers[b].object == object ? state.pendingOthers[b].nearest
+                                                                     : state.pendingNearest[b];
+}
+
 // The blocks of `blocks` where a pending write can lie in front of a test (farthest key `kHi`).
 BlockMask blocksReadingPending(const CpuTileState& state, BlockMask blocks, float kHi,
                                bool orderIndependent, std::uint32_t object) {
   BlockMask reading = 0;
   for (BlockMask m = blocks & state.pendingBlocks; m != 0; m &= m - 1) {
     const auto b = static_cast<std::size_t>(std::countr_zero(m));
-    // (In an order-independent pass the object's own writes do not count: when it has the
-    // nearest key, the other objects' nearest decides.)
-    const bool othersOnly = orderIndependent && state.pendingOthers[b].object == object;
-    if ((othersOnly ? state.pendingOthers[b].nearest : state.pendingNearest[b]) <= kHi)
-      reading |= BlockMask{1} << b;
+    if (nearestRead(state, b, orderIndependent, object) <= kHi) reading |= BlockMask{1} << b;
   }
   return reading;
 }
@@ -239,6 +243,9 @@ struct TestResolution {
 bool resolveForTest(void* context, std::size_t block, float zHi) {
   auto& t = *static_cast<TestResolution*>(context);
   CpuTileState& state = t.tile.state;
+  // Every write pending there behind the piece: none to draw, the list as it is.
+  const float read = nearestRead(state, block, t.orderIndependent, t.item.object);
+  if (read > zHi) return read <= t.item.kHi;
   const BlockMask bit = BlockMask{1} << block;
   bool left = false;
   float nearest = std::numeric_limits<float>::infinity();
