@@ -257,6 +257,64 @@ TEST_P(OcclusionSemantics, BoxesDrawnAgainAnswerWhereTheyAreNow) {
 
 // `copies` squares of half size h centred on (cx, cy), the first at z, each next dz farther, as
 // one mesh.
+Mesh squareStack(int copies, float cx, float cy, float z, float h, float dz);
+
+// A batch test and the write of its triangles draw the same list, and CULLIDE's two passes of a
+// view draw it again (the cpu backend records such repeats once, and bounds them once): listed
+// triangles drawn again answer for where they are drawn now, under another pose, in another view,
+// and in the order they are listed.
+TEST_P(OcclusionSemantics, ListedTrianglesDrawnAgainAnswerWhereTheyAreNow) {
+  // Object 5: two squares over A, triangles 0 and 1 in front of it (z = -2), 2 and 3 behind it
+  // (z = 2).
+  scene_ = test::sceneOf({squareMesh(0, 0, 0, 1), squareMesh(0, 0, 2, 1), squareMesh(0, 0, -2, 1),
+                          squareMesh(5, 0, 0, 1), squareMesh(0.5f, 0, 0, 1),
+                          squareStack(2, 0, 0, -2, 1, 4)});
+  backend_->attachScene(scene_);
+  backend_->setPoses(test::identityPoses(scene_.objectCount()));
+  const std::vector<std::uint32_t> frontThenBack = {0, 2};
+  const std::vector<std::uint32_t> front = {0, 1};
+  const auto pass = [&](const Eigen::Vector3d& direction) {
+    backend_->beginPass(view(direction), DepthUse::Fresh);
+    backend_->writeRange(wholeOf(scene_, 0));
+  };
+  pass(Eigen::Vector3d::UnitZ());
+  const QueryIndex first = backend_->queryTriangles(5, frontThenBack);
+  backend_->writeTriangles(5, frontThenBack);
+  pass(Eigen::Vector3d::UnitZ());  // the same view: the same list under the same matrix
+  const QueryIndex again = backend_->queryTriangles(5, frontThenBack);
+  backend_->writeTriangles(5, frontThenBack);
+  pass(Eigen::Vector3d::UnitZ());
+  const QueryIndex frontSquare = backend_->queryTriangles(5, front);
+  std::vector<Pose> moved = test::identityPoses(scene_.objectCount());
+  moved[5].translation = Eigen::Vector3d(0, 0, 10);  // both squares behind A
+  backend_->setPoses(moved);
+  pass(Eigen::Vector3d::UnitZ());
+  const QueryIndex frontMoved = backend_->queryTriangles(5, front);
+  const QueryIndex movedBehind = backend_->queryTriangles(5, frontThenBack);
+  backend_->setPoses(test::identityPoses(scene_.objectCount()));
+  pass(-Eigen::Vector3d::UnitZ());
+  const QueryIndex otherView = backend_->queryTriangles(5, frontThenBack);
+  pass(Eigen::Vector3d::UnitZ());
+  const QueryIndex reversed = backend_->queryTriangles(5, std::vector<std::uint32_t>{2, 0});
+  std::vector<std::uint8_t> answers;
+  backend_->fetchResults(answers);
+  ASSERT_EQ(answers.size(), 14u);
+  EXPECT_EQ(answers[first], 1) << "a triangle in front of A";
+  EXPECT_EQ(answers[first + 1], 0) << "a triangle behind A";
+  EXPECT_EQ(answers[frontSquare], 1) << "the front square, in front of A";
+  EXPECT_EQ(answers[frontSquare + 1], 1) << "the front square's other triangle";
+  EXPECT_EQ(answers[again], 1) << "the same list again, in front";
+  EXPECT_EQ(answers[again + 1], 0) << "the same list again, behind";
+  EXPECT_EQ(answers[movedBehind], 0) << "the front triangle, its object moved behind A";
+  EXPECT_EQ(answers[movedBehind + 1], 0) << "the back triangle, moved farther";
+  EXPECT_EQ(answers[frontMoved], 0) << "the front square moved behind A";
+  EXPECT_EQ(answers[frontMoved + 1], 0) << "the front square moved behind A";
+  EXPECT_EQ(answers[otherView], 0) << "looking along -z the front triangle is behind A";
+  EXPECT_EQ(answers[otherView + 1], 1) << "and the back one in front";
+  EXPECT_EQ(answers[reversed], 0) << "listed first now: the triangle behind A";
+  EXPECT_EQ(answers[reversed + 1], 1) << "listed second: the one in front";
+}
+
 Mesh squareStack(int copies, float cx, float cy, float z, float h, float dz) {
   Mesh stack;
   stack.name = "square stack";

@@ -138,6 +138,13 @@ void boundChunk(std::span<const CpuPartScreenBounds* const> parts, const RasterP
   boundItem(all, finite, pass, item);
 }
 
+// Whether passes `a` and `b` give an item of the same extent the same rectangle and key range.
+bool boundsAlike(const RasterPass& a, const RasterPass& b) {
+  return a.resolution == b.resolution && a.marginPx == b.marginPx && a.keyLo == b.keyLo &&
+         a.keyHi == b.keyHi && a.depthEpsilon == b.depthEpsilon &&
+         a.rawTestOffset == b.rawTestOffset && a.conservative == b.conservative;
+}
+
 // Items [n0, n1) of command `ci`, at items[n0 ..]; a chunk item's parts at
 // bins.parts[firstParts + n0 ..]. A part that is a whole part of the mesh takes its vertex set's
 // bounds of that part (made once for every command of the set).
@@ -171,6 +178,20 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       boundItem(e, e.finite(), raster, item, ownerItems ? &ownerItems[b].rect : nullptr);
     }
     return;
+  }
+  if (c.itemsOf != CpuCommand::kNone) {
+    // The items of an earlier command of the same role, list and matrix (binning runs those
+    // first), when its pass bounds them alike: the same rectangles and key ranges.
+    const RasterPass& owner = recording.passes[bins.passOf[c.itemsOf]].raster;
+    if (boundsAlike(owner, raster)) {
+      const CpuItem* from = bins.items.data() + bins.firstItem[c.itemsOf];
+      for (std::uint32_t n = n0; n < n1; ++n) {
+        CpuItem& item = items[n] = from[n];
+        item.command = ci, item.pass = pass, item.answer = answerOf(n * kChunkTriangles);
+        item.answerEach = base.answerEach;
+      }
+      return;
+    }
   }
   const CpuMeshBounds& mesh = bounds[c.mesh];
   constexpr std::size_t kParts = kChunkTriangles / kPartTriangles;
@@ -339,12 +360,12 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
     for (std::uint32_t n0 = 0; n0 < n; n0 += kItemsPerTask)
       bins.itemTasks.push_back({i, n0, std::min(n, n0 + kItemsPerTask)});
   }
-  // Commands that share boxes last: their boxes' screen form is made by the command that
-  // recorded them.
+  // Commands that share boxes or items last: the boxes' screen form and the items are made by the
+  // command that recorded them.
   const auto owning = static_cast<std::size_t>(
       std::stable_partition(
           bins.itemTasks.begin(), bins.itemTasks.end(),
-          [&](const auto& task) { return !recording.commands[task[0]].sharesBoxes(); }) -
+          [&](const auto& task) { return !recording.commands[task[0]].sharesItems(); }) -
       bins.itemTasks.begin());
   bins.boxCubes.resize(recording.boxes.size());
   const auto makeTask = [&](std::size_t t) {

@@ -132,11 +132,40 @@ CpuCommand& CpuRasterBackend::recordRange(CpuCommand::Role role, const MeshRange
 
 CpuCommand& CpuRasterBackend::recordListed(CpuCommand::Role role, ObjectId object,
                                            std::span<const std::uint32_t> triangles) {
-  std::vector<std::uint32_t>& listed = open_->recording.listed;
+  CpuRecording& recording = open_->recording;
+  std::vector<std::uint32_t>& listed = recording.listed;
   CpuCommand& c = record(role, CpuCommand::Source::Listed, object);
-  c.first = static_cast<std::uint32_t>(listed.size());
   c.count = static_cast<std::uint32_t>(triangles.size());
-  listed.insert(listed.end(), triangles.begin(), triangles.end());
+  // The same list as the object's last one (a batch test and the write of its triangles, both of
+  // CULLIDE's passes of a view) is recorded and put in draw order once; the items of a command of
+  // the same role under the same matrix are copied at binning. Compared entry for entry.
+  std::vector<std::uint32_t>& last = recording.lastListed;
+  if (last.size() < 2 * scene_->objectCount()) last.resize(2 * scene_->objectCount(), 0);
+  const auto index = static_cast<std::uint32_t>(recording.commands.size() - 1);
+  const auto rootOf = [&](std::uint32_t i) {
+    const CpuCommand& earlier = recording.commands[i];
+    return earlier.listedOf != CpuCommand::kNone ? earlier.listedOf : i;
+  };
+  const std::uint32_t latest = std::max(last[2 * object], last[2 * object + 1]);
+  if (latest != 0) {
+    const CpuCommand& earlier = recording.commands[latest - 1];
+    if (earlier.count == c.count &&
+        std::memcmp(listed.data() + earlier.first, triangles.data(), triangles.size_bytes()) == 0) {
+      c.first = earlier.first;
+      c.listedOf = rootOf(latest - 1);
+    }
+  }
+  std::uint32_t& sameRole = last[2 * object + (role == CpuCommand::Role::Write ? 1 : 0)];
+  if (c.listedOf != CpuCommand::kNone && sameRole != 0 && rootOf(sameRole - 1) == c.listedOf) {
+    const CpuCommand& earlier = recording.commands[sameRole - 1];
+    if (std::memcmp(earlier.toScreen.data(), c.toScreen.data(), sizeof(ScreenMatrix)) == 0)
+      c.itemsOf = earlier.itemsOf != CpuCommand::kNone ? earlier.itemsOf : sameRole - 1;
+  }
+  sameRole = index + 1;
+  if (c.listedOf == CpuCommand::kNone) {
+    c.first = static_cast<std::uint32_t>(listed.size());
+    listed.insert(listed.end(), triangles.begin(), triangles.end());
+  }
   ++counters_.draws;
   counters_.trianglesDrawn += triangles.size();
   return c;

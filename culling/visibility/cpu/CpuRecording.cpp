@@ -17,7 +17,8 @@ void putInDrawOrder(CpuRecording& recording, std::span<const CpuMeshBounds> boun
   recording.listedOffset.resize(recording.listed.size());
   auto& sorted = scratch.sorted;
   for (const CpuCommand& c : recording.commands) {
-    if (c.source != CpuCommand::Source::Listed) continue;
+    // (A list another command recorded is in draw order with that one's.)
+    if (c.source != CpuCommand::Source::Listed || c.listedOf != CpuCommand::kNone) continue;
     const std::vector<std::uint32_t>& position = bounds[c.mesh].position;
     std::uint32_t* listed = recording.listed.data() + c.first;
     std::uint32_t* offset = recording.listedOffset.data() + c.first;

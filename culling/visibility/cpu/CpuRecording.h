@@ -23,10 +23,11 @@ using ScreenMatrix = Eigen::Matrix<double, 3, 4>;
 struct CpuCommand {
   enum class Role : std::uint8_t { Test, Write };
   // Range: the whole mesh (first 0, count its triangles); Listed: count mesh triangles listed at
-  // CpuRecording::listed[first...]; Boxes: count boxes at CpuRecording::boxes[first...] (those of
-  // an earlier command when it drew the same boxes under the same matrix: sharesBoxes). Once in
-  // draw order (putInDrawOrder) a command's triangles are positions in its mesh's draw order
-  // (CpuMeshBounds), and its answers are numbered in that order until answersInIssueOrder.
+  // CpuRecording::listed[first...] (those of an earlier command when it listed the same:
+  // listedOf); Boxes: count boxes at CpuRecording::boxes[first...] (those of an earlier command
+  // when it drew the same boxes under the same matrix: sharesBoxes). Once in draw order
+  // (putInDrawOrder) a command's triangles are positions in its mesh's draw order (CpuMeshBounds),
+  // and its answers are numbered in that order until answersInIssueOrder.
   enum class Source : std::uint8_t { Range, Listed, Boxes };
   Role role = Role::Test;
   Source source = Source::Range;
@@ -48,6 +49,15 @@ struct CpuCommand {
   static constexpr std::uint32_t kOwnBoxes = ~std::uint32_t{0};
   std::uint32_t boxesOf = kOwnBoxes;
   [[nodiscard]] bool sharesBoxes() const { return boxesOf != kOwnBoxes; }
+  // Listed: the earlier command of the recording that recorded the same object's list, entry for
+  // entry (a batch test and the write of its triangles, both of CULLIDE's passes of a view; put in
+  // draw order once), and the earlier one of the same role under the same matrix with that list,
+  // whose items binning copies when its pass bounds items alike (kNone: none).
+  static constexpr std::uint32_t kNone = ~std::uint32_t{0};
+  std::uint32_t listedOf = kNone;
+  std::uint32_t itemsOf = kNone;
+  // Whether binning makes its items from an earlier command's (boxes, or items).
+  [[nodiscard]] bool sharesItems() const { return sharesBoxes() || itemsOf != kNone; }
   ScreenMatrix toScreen = ScreenMatrix::Zero();
 };
 
@@ -72,10 +82,12 @@ struct CpuRecording {
   std::vector<OrientedBox> boxes;
   // Per object: 1 + the last command that recorded boxes of it (0: none yet).
   std::vector<std::uint32_t> lastBoxCommand;
+  // Per object and role (2 object + 1 for writes): 1 + its last Listed command (0: none yet).
+  std::vector<std::uint32_t> lastListed;
 
   void clear() {
     passes.clear(), commands.clear(), listed.clear(), listedOffset.clear(), boxes.clear();
-    lastBoxCommand.clear();
+    lastBoxCommand.clear(), lastListed.clear();
   }
   [[nodiscard]] bool empty() const { return passes.empty(); }
   // Sets each pass' endCommand (once every command is recorded).

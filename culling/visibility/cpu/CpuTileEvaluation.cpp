@@ -185,8 +185,8 @@ bool canOcclude(const CpuPendingWrite& p, float zHi, bool orderIndependent, std:
 // order-independent pass not its own: when it has the nearest key, the other objects' nearest).
 float nearestRead(const CpuTileState& state, std::size_t b, bool orderIndependent,
                   std::uint32_t object) {
-  return orderIndependent && state.pendingOthers[b].object == object ? state.pendingOthers[b].nearest
-                                                                     : state.pendingNearest[b];
+  const CpuPendingOthers& others = state.pendingOthers[b];
+  return orderIndependent && others.object == object ? others.nearest : state.pendingNearest[b];
 }
 
 // The blocks of `blocks` where a pending write can lie in front of a test (farthest key `kHi`).
