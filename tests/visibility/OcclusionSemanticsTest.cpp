@@ -315,6 +315,33 @@ TEST_P(OcclusionSemantics, ListedTrianglesDrawnAgainAnswerWhereTheyAreNow) {
   EXPECT_EQ(answers[reversed + 1], 1) << "listed second: the one in front";
 }
 
+// CULLIDE's two passes of a view draw each whole mesh again in the same role under the same
+// matrix (the cpu backend bounds such repeats once): a mesh drawn again answers for where it is
+// drawn now.
+TEST_P(OcclusionSemantics, MeshesDrawnAgainAnswerWhereTheyAreNow) {
+  const auto pass = [&] {
+    backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+    backend_->writeRange(wholeOf(scene_, 0));
+  };
+  pass();
+  const QueryIndex inFront = backend_->queryRange(wholeOf(scene_, 2));
+  backend_->writeRange(wholeOf(scene_, 2));
+  pass();
+  const QueryIndex again = backend_->queryRange(wholeOf(scene_, 2));
+  backend_->writeRange(wholeOf(scene_, 2));
+  std::vector<Pose> moved = test::identityPoses(scene_.objectCount());
+  moved[2].translation = Eigen::Vector3d(0, 0, 4);  // C at z = 2, behind A
+  backend_->setPoses(moved);
+  pass();
+  const QueryIndex movedBehind = backend_->queryRange(wholeOf(scene_, 2));
+  std::vector<std::uint8_t> answers;
+  backend_->fetchResults(answers);
+  ASSERT_EQ(answers.size(), 3u);
+  EXPECT_EQ(answers[inFront], 1) << "C in front of A";
+  EXPECT_EQ(answers[again], 1) << "C in front of A, in the same view again";
+  EXPECT_EQ(answers[movedBehind], 0) << "C moved behind A";
+}
+
 Mesh squareStack(int copies, float cx, float cy, float z, float h, float dz) {
   Mesh stack;
   stack.name = "square stack";

@@ -159,6 +159,20 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
   base.test = c.role == CpuCommand::Role::Test;
   base.answerEach = base.test && c.answerEach;
   const auto answerOf = [&](std::uint32_t offset) { return c.query + (c.answerEach ? offset : 0); };
+  if (c.itemsOf != CpuCommand::kNone) {
+    // The items of an earlier command of the same role, list and matrix (binning runs those
+    // first), when its pass bounds them alike: the same rectangles and key ranges.
+    const RasterPass& owner = recording.passes[bins.passOf[c.itemsOf]].raster;
+    if (boundsAlike(owner, raster)) {
+      const CpuItem* from = bins.items.data() + bins.firstItem[c.itemsOf];
+      for (std::uint32_t n = n0; n < n1; ++n) {
+        CpuItem& item = items[n] = from[n];
+        item.command = ci, item.pass = pass, item.answer = answerOf(c.source == CpuCommand::Source::Boxes ? n : n * kChunkTriangles);
+        item.answerEach = base.answerEach;
+      }
+      return;
+    }
+  }
   if (c.source == CpuCommand::Source::Boxes) {
     // A command that recorded its boxes puts them in screen space; one sharing them finds them
     // there (binning runs those after the others), and their rectangles too when its pass has the
@@ -178,20 +192,6 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       boundItem(e, e.finite(), raster, item, ownerItems ? &ownerItems[b].rect : nullptr);
     }
     return;
-  }
-  if (c.itemsOf != CpuCommand::kNone) {
-    // The items of an earlier command of the same role, list and matrix (binning runs those
-    // first), when its pass bounds them alike: the same rectangles and key ranges.
-    const RasterPass& owner = recording.passes[bins.passOf[c.itemsOf]].raster;
-    if (boundsAlike(owner, raster)) {
-      const CpuItem* from = bins.items.data() + bins.firstItem[c.itemsOf];
-      for (std::uint32_t n = n0; n < n1; ++n) {
-        CpuItem& item = items[n] = from[n];
-        item.command = ci, item.pass = pass, item.answer = answerOf(n * kChunkTriangles);
-        item.answerEach = base.answerEach;
-      }
-      return;
-    }
   }
   const CpuMeshBounds& mesh = bounds[c.mesh];
   constexpr std::size_t kParts = kChunkTriangles / kPartTriangles;
@@ -360,21 +360,31 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
     for (std::uint32_t n0 = 0; n0 < n; n0 += kItemsPerTask)
       bins.itemTasks.push_back({i, n0, std::min(n, n0 + kItemsPerTask)});
   }
-  // Commands that share boxes or items last: the boxes' screen form and the items are made by the
-  // command that recorded them.
-  const auto owning = static_cast<std::size_t>(
-      std::stable_partition(
-          bins.itemTasks.begin(), bins.itemTasks.end(),
-          [&](const auto& task) { return !recording.commands[task[0]].sharesItems(); }) -
-      bins.itemTasks.begin());
+  // In three rounds: the commands that recorded their boxes or triangles; those sharing boxes
+  // (their screen form, and their rectangles, are the recording command's); those copying items
+  // (of a command of one of the rounds before).
+  const auto stage = [&](const auto& task) {
+    const CpuCommand& c = recording.commands[task[0]];
+    return c.itemsOf != CpuCommand::kNone ? 2 : c.sharesBoxes() ? 1 : 0;
+  };
+  const auto begin = bins.itemTasks.begin();
+  const auto recorded = std::stable_partition(
+      begin, bins.itemTasks.end(), [&](const auto& task) { return stage(task) == 0; });
+  const auto sharing = std::stable_partition(recorded, bins.itemTasks.end(),
+                                             [&](const auto& task) { return stage(task) == 1; });
   bins.boxCubes.resize(recording.boxes.size());
   const auto makeTask = [&](std::size_t t) {
     const auto [i, n0, n1] = bins.itemTasks[t];
     makeItems(recording, bounds, vertices, i, passOf[i], bins.items.data() + bins.firstItem[i],
               bins, bins.firstParts[i], n0, n1);
   };
-  forEachIndex(arena, owning, makeTask);
-  forEachIndex(arena, bins.itemTasks.size() - owning, [&](std::size_t t) { makeTask(owning + t); });
+  const std::size_t ends[] = {static_cast<std::size_t>(recorded - begin),
+                              static_cast<std::size_t>(sharing - begin), bins.itemTasks.size()};
+  std::size_t first = 0;
+  for (const std::size_t end : ends) {
+    forEachIndex(arena, end - first, [&](std::size_t t) { makeTask(first + t); });
+    first = end;
+  }
   forEachIndex(arena, chains,
                [&](std::size_t c) { binChain(recording, bins, arena, bins.chains[c]); });
 }

@@ -122,9 +122,21 @@ CpuCommand& CpuRasterBackend::recordRange(CpuCommand::Role role, const MeshRange
     std::iota(part.begin(), part.end(), range.firstTriangle);
     return recordListed(role, range.object, part);
   }
+  CpuRecording& recording = open_->recording;
   CpuCommand& c = record(role, CpuCommand::Source::Range, range.object);
   c.first = 0, c.count = range.triangleCount;
   c.winding = meshBounds_[mesh].winding;
+  // The object's mesh drawn again in the same role under the same matrix (CULLIDE's two passes
+  // of a view): its items are copied at binning.
+  std::vector<std::uint32_t>& last = recording.lastRange;
+  if (last.size() < 2 * scene_->objectCount()) last.resize(2 * scene_->objectCount(), 0);
+  std::uint32_t& sameRole = last[2 * range.object + (role == CpuCommand::Role::Write ? 1 : 0)];
+  if (sameRole != 0) {
+    const CpuCommand& earlier = recording.commands[sameRole - 1];
+    if (std::memcmp(earlier.toScreen.data(), c.toScreen.data(), sizeof(ScreenMatrix)) == 0)
+      c.itemsOf = earlier.itemsOf != CpuCommand::kNone ? earlier.itemsOf : sameRole - 1;
+  }
+  sameRole = static_cast<std::uint32_t>(recording.commands.size());
   ++counters_.draws;
   counters_.trianglesDrawn += range.triangleCount;
   return c;
@@ -194,6 +206,17 @@ CpuCommand& CpuRasterBackend::recordBoxes(CpuCommand::Role role, ObjectId object
     }
   }
   last[object] = index + 1;
+  // The items of the last command of the same role with these boxes (the other pass of a view)
+  // are copied at binning.
+  std::vector<std::uint32_t>& lastByRole = recording.lastBoxes;
+  if (lastByRole.size() < 2 * scene_->objectCount()) lastByRole.resize(2 * scene_->objectCount(), 0);
+  std::uint32_t& sameRole = lastByRole[2 * object + (role == CpuCommand::Role::Write ? 1 : 0)];
+  if (c.sharesBoxes() && sameRole != 0) {
+    const CpuCommand& earlier = recording.commands[sameRole - 1];
+    if ((earlier.sharesBoxes() ? earlier.boxesOf : sameRole - 1) == c.boxesOf)
+      c.itemsOf = earlier.itemsOf != CpuCommand::kNone ? earlier.itemsOf : sameRole - 1;
+  }
+  sameRole = index + 1;
   if (!c.sharesBoxes()) {
     c.first = static_cast<std::uint32_t>(all.size());
     all.insert(all.end(), boxes.begin(), boxes.end());

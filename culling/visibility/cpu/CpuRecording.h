@@ -51,8 +51,9 @@ struct CpuCommand {
   [[nodiscard]] bool sharesBoxes() const { return boxesOf != kOwnBoxes; }
   // Listed: the earlier command of the recording that recorded the same object's list, entry for
   // entry (a batch test and the write of its triangles, both of CULLIDE's passes of a view; put in
-  // draw order once), and the earlier one of the same role under the same matrix with that list,
-  // whose items binning copies when its pass bounds items alike (kNone: none).
+  // draw order once). Every source: the earlier one of the same role under the same matrix with
+  // the same triangles or boxes, whose items binning copies when its pass bounds items alike
+  // (kNone: none).
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
   std::uint32_t listedOf = kNone;
   std::uint32_t itemsOf = kNone;
@@ -82,12 +83,15 @@ struct CpuRecording {
   std::vector<OrientedBox> boxes;
   // Per object: 1 + the last command that recorded boxes of it (0: none yet).
   std::vector<std::uint32_t> lastBoxCommand;
-  // Per object and role (2 object + 1 for writes): 1 + its last Listed command (0: none yet).
+  // Per object and role (2 object + 1 for writes): 1 + its last Listed command, its last Range
+  // command and its last box command (0: none yet).
   std::vector<std::uint32_t> lastListed;
+  std::vector<std::uint32_t> lastRange;
+  std::vector<std::uint32_t> lastBoxes;
 
   void clear() {
     passes.clear(), commands.clear(), listed.clear(), listedOffset.clear(), boxes.clear();
-    lastBoxCommand.clear(), lastListed.clear();
+    lastBoxCommand.clear(), lastListed.clear(), lastRange.clear(), lastBoxes.clear();
   }
   [[nodiscard]] bool empty() const { return passes.empty(); }
   // Sets each pass' endCommand (once every command is recorded).
