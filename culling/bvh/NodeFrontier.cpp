@@ -9,11 +9,15 @@ void NodeFrontier::attach(const SceneGeometry& scene, const SceneHierarchies& hi
   scene_ = &scene;
   hierarchies_ = &hierarchies;
   active_.assign(scene.objectCount(), {});
+  worldBoxes_.assign(scene.objectCount(), {});
+  worldPose_.assign(scene.objectCount(), Pose{});
+  worldKept_.assign(scene.objectCount(), 0);
   reset();
 }
 
 void NodeFrontier::reset() {
   for (auto& nodes : active_) nodes.assign(1, 0u);
+  std::ranges::fill(worldKept_, 0);
 }
 
 bool NodeFrontier::allLeaves(ObjectId object) const {
@@ -23,10 +27,16 @@ bool NodeFrontier::allLeaves(ObjectId object) const {
 
 std::size_t NodeFrontier::retain(ObjectId object, std::span<const std::uint8_t> keep) {
   auto& nodes = active_[object];
+  auto& boxes = worldBoxes_[object];
+  const bool withBoxes = worldKept_[object] != 0;
   std::size_t kept = 0;
   for (std::size_t k = 0; k < nodes.size(); ++k)
-    if (keep[k]) nodes[kept++] = nodes[k];
+    if (keep[k]) {
+      if (withBoxes) boxes[kept] = boxes[k];
+      nodes[kept++] = nodes[k];
+    }
   nodes.resize(kept);
+  if (withBoxes) boxes.resize(kept);
   return kept;
 }
 
@@ -42,17 +52,27 @@ void NodeFrontier::expand(ObjectId object) {
     }
   }
   active_[object].swap(scratch_);
+  worldKept_[object] = 0;
 }
 
 Aabb NodeFrontier::worldBounds(ObjectId object, const Pose& pose) const {
-  const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
-  Aabb result;
-  for (std::uint32_t n : active_[object]) {
-    const OrientedBox& b = box(object, n);
-    const Eigen::Vector3d c = pose.apply(b.center);
-    const Eigen::Vector3d h = (r * b.axes).cwiseAbs() * b.halfExtents;
-    result.extend(Aabb(c - h, c + h));
+  std::vector<Aabb>& boxes = worldBoxes_[object];
+  const Pose& kept = worldPose_[object];
+  if (worldKept_[object] == 0 || kept.rotation.coeffs() != pose.rotation.coeffs() ||
+      kept.translation != pose.translation) {
+    const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
+    boxes.clear();
+    for (std::uint32_t n : active_[object]) {
+      const OrientedBox& b = box(object, n);
+      const Eigen::Vector3d c = pose.apply(b.center);
+      const Eigen::Vector3d h = (r * b.axes).cwiseAbs() * b.halfExtents;
+      boxes.emplace_back(c - h, c + h);
+    }
+    worldPose_[object] = pose;
+    worldKept_[object] = 1;
   }
+  Aabb result;
+  for (const Aabb& b : boxes) result.extend(b);
   return result;
 }
 

@@ -41,11 +41,12 @@ class NodeFrontier {
   // nodes(object).size()). Returns how many are kept.
   std::size_t retain(ObjectId object, std::span<const std::uint8_t> keep);
   // Drops every node of the object: it has left the traversal.
-  void clear(ObjectId object) { active_[object].clear(); }
+  void clear(ObjectId object) { active_[object].clear(), worldBoxes_[object].clear(); }
   // Children of every active internal node replace it; active leaves stay.
   void expand(ObjectId object);
 
-  // World AABB of the object's active nodes under `pose` (empty when none are).
+  // World AABB of the object's active nodes under `pose` (empty when none are). Each node's is
+  // kept until the frontier of the object changes other than by retain(), or the pose does.
   [[nodiscard]] Aabb worldBounds(ObjectId object, const Pose& pose) const;
   // [Min, Max] of the object's active nodes along the unit `direction` under `pose`.
   [[nodiscard]] std::pair<double, double> interval(ObjectId object, const Pose& pose,
@@ -66,6 +67,11 @@ class NodeFrontier {
   const SceneHierarchies* hierarchies_ = nullptr;
   std::vector<std::vector<std::uint32_t>> active_;  // per object
   std::vector<std::uint32_t> scratch_;
+  // Per object, the world boxes of its active nodes (in their order) under worldPose_, when
+  // worldKept_ (worldBounds' per-node boxes, made once for a level's three axes).
+  mutable std::vector<std::vector<Aabb>> worldBoxes_;
+  mutable std::vector<Pose> worldPose_;
+  mutable std::vector<std::uint8_t> worldKept_;
 };
 
 }  // namespace cdb

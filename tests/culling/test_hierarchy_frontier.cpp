@@ -187,5 +187,36 @@ TEST(NodeFrontier, WorldBoundsAndIntervalsHoldTheActiveNodesTriangles) {
   }
 }
 
+// worldBounds keeps each node's box from one call to the next: after a retain, under another
+// pose, after an expand and a clear it answers as a frontier that never asked before.
+TEST(NodeFrontier, WorldBoundsKeptAcrossCallsAnswerAsMadeAfresh) {
+  auto s = twoTori();
+  NodeFrontier kept, fresh;
+  kept.attach(s.scene, s.hierarchies);
+  fresh.attach(s.scene, s.hierarchies);
+  kept.expand(1), fresh.expand(1);
+  const Aabb all = kept.worldBounds(1, s.poses[1]);
+  EXPECT_FALSE(all.isEmpty());
+  std::vector<std::uint8_t> keep(kept.nodes(1).size(), 0);
+  ASSERT_GE(keep.size(), 3u);
+  keep[1] = 1;
+  kept.retain(1, keep), fresh.retain(1, keep);
+  const Aabb one = kept.worldBounds(1, s.poses[1]);
+  EXPECT_TRUE(one.isApprox(fresh.worldBounds(1, s.poses[1]), 0.0));
+  EXPECT_FALSE(one.isApprox(all, 1e-9)) << "one node's box is smaller than the object's";
+  Pose moved = s.poses[1];
+  moved.translation += Eigen::Vector3d(0.5, -0.25, 2.0);
+  NodeFrontier other;
+  other.attach(s.scene, s.hierarchies);
+  other.expand(1), other.retain(1, keep);
+  EXPECT_TRUE(kept.worldBounds(1, moved).isApprox(other.worldBounds(1, moved), 0.0));
+  EXPECT_TRUE(kept.worldBounds(1, moved).isApprox(one.translated(moved.translation -
+                                                                 s.poses[1].translation), 1e-12));
+  kept.expand(1), fresh.expand(1);
+  EXPECT_TRUE(kept.worldBounds(1, s.poses[1]).isApprox(fresh.worldBounds(1, s.poses[1]), 0.0));
+  kept.clear(1);
+  EXPECT_TRUE(kept.worldBounds(1, s.poses[1]).isEmpty());
+}
+
 }  // namespace
 }  // namespace cdb
