@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -106,7 +107,7 @@ constexpr CpuEvaluation kPlain{0, false, false};
 using Setting = std::tuple<int, bool, bool>;
 
 class CpuDemandEvaluation : public testing::TestWithParam<Setting> {
- protected:
+ public:
   // Compares the case's setting at 1, 2 and 4 threads with the plain evaluation; returns the plain
   // outcome.
   Outcome expectSameAsPlain(const SceneGeometry& scene, const std::vector<Pose>& poses,
@@ -412,31 +413,29 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene, bool orderIndepen
   };
 }
 
-TEST_P(CpuDemandEvaluation, RandomOrderIndependentPassesAnswerAsPlainEvaluation) {
-  for (unsigned seed : {5u, 6u, 7u}) {
+// Random streams (randomStream) of the seeds over random scenes, in both modes, as the plain
+// evaluation answers them.
+void expectRandomStreamsAsPlain(const CpuDemandEvaluation& test,
+                                std::initializer_list<unsigned> seeds, bool orderIndependent) {
+  for (unsigned seed : seeds) {
     std::mt19937 rng(seed * 7919u);
     const SceneGeometry scene = randomScene(rng, 24);
     const std::vector<Pose> poses = posesAround(seed, scene.objectCount(), 0.8);
     for (bool conservative : {true, false}) {
       SCOPED_TRACE(testing::Message()
                    << (conservative ? "conservative" : "raw") << ", seed " << seed);
-      expectBothAnswers(
-          expectSameAsPlain(scene, poses, randomStream(seed, scene, true), conservative));
+      expectBothAnswers(test.expectSameAsPlain(
+          scene, poses, randomStream(seed, scene, orderIndependent), conservative));
     }
   }
 }
 
+TEST_P(CpuDemandEvaluation, RandomOrderIndependentPassesAnswerAsPlainEvaluation) {
+  expectRandomStreamsAsPlain(*this, {5u, 6u, 7u}, true);
+}
+
 TEST_P(CpuDemandEvaluation, RandomStreamsAnswerAsPlainEvaluation) {
-  for (unsigned seed : {1u, 2u, 3u, 4u}) {
-    std::mt19937 rng(seed * 7919u);
-    const SceneGeometry scene = randomScene(rng, 24);
-    const std::vector<Pose> poses = posesAround(seed, scene.objectCount(), 0.8);
-    for (bool conservative : {true, false}) {
-      SCOPED_TRACE(testing::Message()
-                   << (conservative ? "conservative" : "raw") << ", seed " << seed);
-      expectBothAnswers(expectSameAsPlain(scene, poses, randomStream(seed, scene), conservative));
-    }
-  }
+  expectRandomStreamsAsPlain(*this, {1u, 2u, 3u, 4u}, false);
 }
 
 // Without the early-out a tile's work depends on nothing another tile does: the counters of work
