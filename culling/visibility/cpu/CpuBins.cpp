@@ -167,7 +167,8 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       const CpuItem* from = bins.items.data() + bins.firstItem[c.itemsOf];
       for (std::uint32_t n = n0; n < n1; ++n) {
         CpuItem& item = items[n] = from[n];
-        item.command = ci, item.pass = pass, item.answer = answerOf(c.source == CpuCommand::Source::Boxes ? n : n * kChunkTriangles);
+        item.command = ci, item.pass = pass;
+        item.answer = answerOf(c.source == CpuCommand::Source::Boxes ? n : n * kChunkTriangles);
         item.answerEach = base.answerEach;
       }
       return;

@@ -15,6 +15,29 @@
 
 namespace cdb {
 
+namespace {
+
+// The slot of `object`'s last command in `role` in a table per object and role (1 + its index in
+// the recording; 0: none yet), grown to the scene's `objects` first.
+std::uint32_t& lastInRole(std::vector<std::uint32_t>& table, std::size_t objects, ObjectId object,
+                          CpuCommand::Role role) {
+  if (table.size() < 2 * objects) table.resize(2 * objects, 0);
+  return table[2 * object + (role == CpuCommand::Role::Write ? 1 : 0)];
+}
+
+bool sameMatrix(const CpuCommand& a, const CpuCommand& b) {
+  return std::memcmp(a.toScreen.data(), b.toScreen.data(), sizeof(ScreenMatrix)) == 0;
+}
+
+// What a command copies items from when it draws what command `i` of the recording drew: the
+// command `i` copies from, or `i`.
+std::uint32_t itemsSource(const CpuRecording& recording, std::uint32_t i) {
+  const CpuCommand& c = recording.commands[i];
+  return c.itemsOf != CpuCommand::kNone ? c.itemsOf : i;
+}
+
+}  // namespace
+
 CpuRasterBackend::CpuRasterBackend(const VisibilityOptions& options) {
   open_ = freshRun();
   setOptions(options);
@@ -128,14 +151,10 @@ CpuCommand& CpuRasterBackend::recordRange(CpuCommand::Role role, const MeshRange
   c.winding = meshBounds_[mesh].winding;
   // The object's mesh drawn again in the same role under the same matrix (CULLIDE's two passes
   // of a view): its items are copied at binning.
-  std::vector<std::uint32_t>& last = recording.lastRange;
-  if (last.size() < 2 * scene_->objectCount()) last.resize(2 * scene_->objectCount(), 0);
-  std::uint32_t& sameRole = last[2 * range.object + (role == CpuCommand::Role::Write ? 1 : 0)];
-  if (sameRole != 0) {
-    const CpuCommand& earlier = recording.commands[sameRole - 1];
-    if (std::memcmp(earlier.toScreen.data(), c.toScreen.data(), sizeof(ScreenMatrix)) == 0)
-      c.itemsOf = earlier.itemsOf != CpuCommand::kNone ? earlier.itemsOf : sameRole - 1;
-  }
+  std::uint32_t& sameRole =
+      lastInRole(recording.lastRange, scene_->objectCount(), range.object, role);
+  if (sameRole != 0 && sameMatrix(recording.commands[sameRole - 1], c))
+    c.itemsOf = itemsSource(recording, sameRole - 1);
   sameRole = static_cast<std::uint32_t>(recording.commands.size());
   ++counters_.draws;
   counters_.trianglesDrawn += range.triangleCount;
@@ -151,14 +170,17 @@ CpuCommand& CpuRasterBackend::recordListed(CpuCommand::Role role, ObjectId objec
   // The same list as the object's last one (a batch test and the write of its triangles, both of
   // CULLIDE's passes of a view) is recorded and put in draw order once; the items of a command of
   // the same role under the same matrix are copied at binning. Compared entry for entry.
-  std::vector<std::uint32_t>& last = recording.lastListed;
-  if (last.size() < 2 * scene_->objectCount()) last.resize(2 * scene_->objectCount(), 0);
   const auto index = static_cast<std::uint32_t>(recording.commands.size() - 1);
   const auto rootOf = [&](std::uint32_t i) {
     const CpuCommand& earlier = recording.commands[i];
     return earlier.listedOf != CpuCommand::kNone ? earlier.listedOf : i;
   };
-  const std::uint32_t latest = std::max(last[2 * object], last[2 * object + 1]);
+  const CpuCommand::Role other =
+      role == CpuCommand::Role::Test ? CpuCommand::Role::Write : CpuCommand::Role::Test;
+  const std::uint32_t otherRole =
+      lastInRole(recording.lastListed, scene_->objectCount(), object, other);
+  std::uint32_t& sameRole = lastInRole(recording.lastListed, scene_->objectCount(), object, role);
+  const std::uint32_t latest = std::max(sameRole, otherRole);
   if (latest != 0) {
     const CpuCommand& earlier = recording.commands[latest - 1];
     if (earlier.count == c.count &&
@@ -167,12 +189,9 @@ CpuCommand& CpuRasterBackend::recordListed(CpuCommand::Role role, ObjectId objec
       c.listedOf = rootOf(latest - 1);
     }
   }
-  std::uint32_t& sameRole = last[2 * object + (role == CpuCommand::Role::Write ? 1 : 0)];
-  if (c.listedOf != CpuCommand::kNone && sameRole != 0 && rootOf(sameRole - 1) == c.listedOf) {
-    const CpuCommand& earlier = recording.commands[sameRole - 1];
-    if (std::memcmp(earlier.toScreen.data(), c.toScreen.data(), sizeof(ScreenMatrix)) == 0)
-      c.itemsOf = earlier.itemsOf != CpuCommand::kNone ? earlier.itemsOf : sameRole - 1;
-  }
+  if (c.listedOf != CpuCommand::kNone && sameRole != 0 && rootOf(sameRole - 1) == c.listedOf &&
+      sameMatrix(recording.commands[sameRole - 1], c))
+    c.itemsOf = itemsSource(recording, sameRole - 1);
   sameRole = index + 1;
   if (c.listedOf == CpuCommand::kNone) {
     c.first = static_cast<std::uint32_t>(listed.size());
@@ -199,7 +218,7 @@ CpuCommand& CpuRasterBackend::recordBoxes(CpuCommand::Role role, ObjectId object
   if (last[object] != 0) {
     const CpuCommand& earlier = recording.commands[last[object] - 1];
     if (earlier.count == c.count &&
-        std::memcmp(earlier.toScreen.data(), c.toScreen.data(), sizeof(ScreenMatrix)) == 0 &&
+        sameMatrix(earlier, c) &&
         std::memcmp(all.data() + earlier.first, boxes.data(), boxes.size_bytes()) == 0) {
       c.first = earlier.first;
       c.boxesOf = earlier.sharesBoxes() ? earlier.boxesOf : last[object] - 1;
@@ -208,13 +227,11 @@ CpuCommand& CpuRasterBackend::recordBoxes(CpuCommand::Role role, ObjectId object
   last[object] = index + 1;
   // The items of the last command of the same role with these boxes (the other pass of a view)
   // are copied at binning.
-  std::vector<std::uint32_t>& lastByRole = recording.lastBoxes;
-  if (lastByRole.size() < 2 * scene_->objectCount()) lastByRole.resize(2 * scene_->objectCount(), 0);
-  std::uint32_t& sameRole = lastByRole[2 * object + (role == CpuCommand::Role::Write ? 1 : 0)];
+  std::uint32_t& sameRole = lastInRole(recording.lastBoxes, scene_->objectCount(), object, role);
   if (c.sharesBoxes() && sameRole != 0) {
     const CpuCommand& earlier = recording.commands[sameRole - 1];
     if ((earlier.sharesBoxes() ? earlier.boxesOf : sameRole - 1) == c.boxesOf)
-      c.itemsOf = earlier.itemsOf != CpuCommand::kNone ? earlier.itemsOf : sameRole - 1;
+      c.itemsOf = itemsSource(recording, sameRole - 1);
   }
   sameRole = index + 1;
   if (!c.sharesBoxes()) {
