@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -123,6 +124,16 @@ inline BlockRange blocksInMask(const CpuDepthBuffer& buffer, const TriangleRaste
   return range;
 }
 
+// std::min(a, b) and std::max(a, b) lane by lane: a unless b is below (above) it.
+template <class V>
+HWY_INLINE V lesserOf(V a, V b) {
+  return hn::IfThenElse(hn::Lt(b, a), b, a);
+}
+template <class V>
+HWY_INLINE V greaterOf(V a, V b) {
+  return hn::IfThenElse(hn::Lt(a, b), b, a);
+}
+
 // How the triangle covers the pixels of its box inside block (bx, by), from the range of each
 // edge function over them, evaluated in float like the pixels: None when some edge's range misses
 // [lo, hi] (the set-up's tolerance bounds that error too, so no covered pixel is skipped); Whole
@@ -130,6 +141,7 @@ inline BlockRange blocksInMask(const CpuDepthBuffer& buffer, const TriangleRaste
 // differently at the border, a write takes the pixel, which only adds pixels a tolerance's width
 // from the triangle); Partial otherwise.
 enum class BlockCover { None, Partial, Whole };
+#if HWY_TARGET == HWY_SCALAR
 inline BlockCover blockCover(const TriangleRaster& r, int bx, int by) {
   const BoxInBlock o = boxInBlock(r, bx, by);
   const float dxA = static_cast<float>(o.dxA), dxB = static_cast<float>(o.dxB);
@@ -144,6 +156,32 @@ inline BlockCover blockCover(const TriangleRaster& r, int bx, int by) {
   }
   return cover;
 }
+#else
+// (With four lanes: the three edges in the lanes of one vector, each lane computing what the
+// scalar expressions above compute, in the same order; a fourth lane of zeros decides nothing.
+// Each edge array is followed by more of the set-up, which the fourth lane reads and zeroes.)
+using D4 = hn::FixedTag<float, 4>;
+static_assert(offsetof(TriangleRaster, hi) + 4 * sizeof(float) <= sizeof(TriangleRaster));
+HWY_INLINE hn::Vec<D4> edgeLanes(const float (&v)[3]) {
+  const D4 d;
+  return hn::IfThenElseZero(hn::FirstN(d, 3), hn::LoadU(d, v));
+}
+inline BlockCover blockCover(const TriangleRaster& r, int bx, int by) {
+  const D4 d;
+  const BoxInBlock o = boxInBlock(r, bx, by);
+  const auto a = edgeLanes(r.a), b = edgeLanes(r.b), c = edgeLanes(r.c);
+  const auto ax = hn::Mul(a, hn::Set(d, static_cast<float>(o.dxA)));
+  const auto bx2 = hn::Mul(a, hn::Set(d, static_cast<float>(o.dxB)));
+  const auto ay = hn::Mul(b, hn::Set(d, static_cast<float>(o.dyA)));
+  const auto by2 = hn::Mul(b, hn::Set(d, static_cast<float>(o.dyB)));
+  const auto fMin = hn::Add(hn::Add(c, lesserOf(ax, bx2)), lesserOf(ay, by2));
+  const auto fMax = hn::Add(hn::Add(c, greaterOf(ax, bx2)), greaterOf(ay, by2));
+  const auto lo = edgeLanes(r.lo), hi = edgeLanes(r.hi);
+  if (!hn::AllFalse(d, hn::Or(hn::Lt(fMax, lo), hn::Gt(fMin, hi)))) return BlockCover::None;
+  return hn::AllTrue(d, hn::And(hn::Ge(fMin, lo), hn::Le(fMax, hi))) ? BlockCover::Whole
+                                                                      : BlockCover::Partial;
+}
+#endif
 
 // The triangle's constants as vectors, in registers for the whole triangle (read through the
 // TriangleRaster the compiler would reload them after every store to the depth buffer).
@@ -547,12 +585,6 @@ struct BatchBounds {
   float zLo[kMostLanes], zHi[kMostLanes];
   std::uint8_t ok[kMostLanes];
 };
-HWY_INLINE hn::Vec<DD> lesserOf(hn::Vec<DD> a, hn::Vec<DD> b) {  // std::min(a, b)
-  return hn::IfThenElse(hn::Lt(b, a), b, a);
-}
-HWY_INLINE hn::Vec<DD> greaterOf(hn::Vec<DD> a, hn::Vec<DD> b) {  // std::max(a, b)
-  return hn::IfThenElse(hn::Lt(a, b), b, a);
-}
 // raster_detail::roundUp, lane by lane: the float's bits, and the next float's, as exact doubles.
 HWY_INLINE hn::Vec<hn::Rebind<float, DD>> roundUpLanes(hn::Vec<DD> v) {
   const DD dd;
