@@ -25,6 +25,13 @@ std::uint32_t& lastInRole(std::vector<std::uint32_t>& table, std::size_t objects
   return table[2 * object + (role == CpuCommand::Role::Write ? 1 : 0)];
 }
 
+// 1 + `object`'s last command in either role of such a table (0: none yet).
+std::uint32_t lastInEitherRole(std::vector<std::uint32_t>& table, std::size_t objects,
+                               ObjectId object) {
+  return std::max(lastInRole(table, objects, object, CpuCommand::Role::Test),
+                  lastInRole(table, objects, object, CpuCommand::Role::Write));
+}
+
 bool sameMatrix(const CpuCommand& a, const CpuCommand& b) {
   return std::memcmp(a.toScreen.data(), b.toScreen.data(), sizeof(ScreenMatrix)) == 0;
 }
@@ -175,12 +182,9 @@ CpuCommand& CpuRasterBackend::recordListed(CpuCommand::Role role, ObjectId objec
     const CpuCommand& earlier = recording.commands[i];
     return earlier.listedOf != CpuCommand::kNone ? earlier.listedOf : i;
   };
-  const CpuCommand::Role other =
-      role == CpuCommand::Role::Test ? CpuCommand::Role::Write : CpuCommand::Role::Test;
-  const std::uint32_t otherRole =
-      lastInRole(recording.lastListed, scene_->objectCount(), object, other);
+  const std::uint32_t latest =
+      lastInEitherRole(recording.lastListed, scene_->objectCount(), object);
   std::uint32_t& sameRole = lastInRole(recording.lastListed, scene_->objectCount(), object, role);
-  const std::uint32_t latest = std::max(sameRole, otherRole);
   if (latest != 0) {
     const CpuCommand& earlier = recording.commands[latest - 1];
     if (earlier.count == c.count &&
@@ -212,27 +216,26 @@ CpuCommand& CpuRasterBackend::recordBoxes(CpuCommand::Role role, ObjectId object
   // write, both passes of a view) are recorded once: binning then bounds them, and a tile sets
   // them up, from one screen form. Compared bit for bit, so every piece is the same.
   static_assert(sizeof(OrientedBox) == 15 * sizeof(double), "a box has no padding to compare");
-  std::vector<std::uint32_t>& last = recording.lastBoxCommand;
-  if (last.size() <= object) last.resize(scene_->objectCount(), 0);
   const auto index = static_cast<std::uint32_t>(recording.commands.size() - 1);
-  if (last[object] != 0) {
-    const CpuCommand& earlier = recording.commands[last[object] - 1];
-    if (earlier.count == c.count &&
-        sameMatrix(earlier, c) &&
+  const auto rootOf = [&](std::uint32_t i) {
+    const CpuCommand& earlier = recording.commands[i];
+    return earlier.sharesBoxes() ? earlier.boxesOf : i;
+  };
+  const std::uint32_t latest =
+      lastInEitherRole(recording.lastBoxes, scene_->objectCount(), object);
+  std::uint32_t& sameRole = lastInRole(recording.lastBoxes, scene_->objectCount(), object, role);
+  if (latest != 0) {
+    const CpuCommand& earlier = recording.commands[latest - 1];
+    if (earlier.count == c.count && sameMatrix(earlier, c) &&
         std::memcmp(all.data() + earlier.first, boxes.data(), boxes.size_bytes()) == 0) {
       c.first = earlier.first;
-      c.boxesOf = earlier.sharesBoxes() ? earlier.boxesOf : last[object] - 1;
+      c.boxesOf = rootOf(latest - 1);
     }
   }
-  last[object] = index + 1;
   // The items of the last command of the same role with these boxes (the other pass of a view)
   // are copied at binning.
-  std::uint32_t& sameRole = lastInRole(recording.lastBoxes, scene_->objectCount(), object, role);
-  if (c.sharesBoxes() && sameRole != 0) {
-    const CpuCommand& earlier = recording.commands[sameRole - 1];
-    if ((earlier.sharesBoxes() ? earlier.boxesOf : sameRole - 1) == c.boxesOf)
-      c.itemsOf = itemsSource(recording, sameRole - 1);
-  }
+  if (c.sharesBoxes() && sameRole != 0 && rootOf(sameRole - 1) == c.boxesOf)
+    c.itemsOf = itemsSource(recording, sameRole - 1);
   sameRole = index + 1;
   if (!c.sharesBoxes()) {
     c.first = static_cast<std::uint32_t>(all.size());

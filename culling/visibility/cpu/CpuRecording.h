@@ -57,8 +57,6 @@ struct CpuCommand {
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
   std::uint32_t listedOf = kNone;
   std::uint32_t itemsOf = kNone;
-  // Whether binning makes its items from an earlier command's (boxes, or items).
-  [[nodiscard]] bool sharesItems() const { return sharesBoxes() || itemsOf != kNone; }
   ScreenMatrix toScreen = ScreenMatrix::Zero();
 };
 
@@ -81,8 +79,6 @@ struct CpuRecording {
   // In draw order: per entry of `listed`, its offset in its command as issued.
   std::vector<std::uint32_t> listedOffset;
   std::vector<OrientedBox> boxes;
-  // Per object: 1 + the last command that recorded boxes of it (0: none yet).
-  std::vector<std::uint32_t> lastBoxCommand;
   // Per object and role (2 object + 1 for writes): 1 + its last Listed command, its last Range
   // command and its last box command (0: none yet).
   std::vector<std::uint32_t> lastListed;
@@ -91,7 +87,7 @@ struct CpuRecording {
 
   void clear() {
     passes.clear(), commands.clear(), listed.clear(), listedOffset.clear(), boxes.clear();
-    lastBoxCommand.clear(), lastListed.clear(), lastRange.clear(), lastBoxes.clear();
+    lastListed.clear(), lastRange.clear(), lastBoxes.clear();
   }
   [[nodiscard]] bool empty() const { return passes.empty(); }
   // Sets each pass' endCommand (once every command is recorded).
