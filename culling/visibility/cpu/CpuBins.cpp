@@ -155,7 +155,7 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
   const CpuCommand& c = recording.commands[ci];
   const RasterPass& raster = recording.passes[pass].raster;
   CpuItem base;
-  base.command = ci, base.pass = pass, base.answer = c.query, base.object = c.object;
+  base.command = ci, base.answer = c.query;
   base.test = c.role == CpuCommand::Role::Test;
   base.answerEach = base.test && c.answerEach;
   const auto answerOf = [&](std::uint32_t offset) { return c.query + (c.answerEach ? offset : 0); };
@@ -167,7 +167,7 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       const CpuItem* from = bins.items.data() + bins.firstItem[c.itemsOf];
       for (std::uint32_t n = n0; n < n1; ++n) {
         CpuItem& item = items[n] = from[n];
-        item.command = ci, item.pass = pass;
+        item.command = ci;
         item.answer = answerOf(c.source == CpuCommand::Source::Boxes ? n : n * kChunkTriangles);
         item.answerEach = base.answerEach;
       }
@@ -215,14 +215,15 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
   for (std::uint32_t n = n0, at = n0 * kChunkTriangles; n < n1; ++n, at += kChunkTriangles) {
     CpuItem& item = items[n] = base;
     item.first = c.first + at;
-    item.count = std::min(kChunkTriangles, c.count - at);
+    const std::uint32_t count = std::min(kChunkTriangles, c.count - at);
+    item.count = count;
     item.answer = answerOf(at);
     item.parts = firstParts + n;
     // Part p: the item's triangles [p, p + 1) * kPartTriangles (as chunkPieces reads them); a
     // Range's are the mesh's own parts.
     for (std::uint32_t p = 0; p < kParts; ++p) {
       const std::uint32_t p0 = p * kPartTriangles;
-      const std::uint32_t p1 = std::min(item.count, p0 + kPartTriangles);
+      const std::uint32_t p1 = std::min(count, p0 + kPartTriangles);
       parts[p] = nullptr;
       if (p0 >= p1) continue;
       if (c.source == CpuCommand::Source::Range) {

@@ -19,26 +19,30 @@
 
 namespace cdb {
 
+// In 32 bytes: a tile reads the items binned to it from all over the recording's, each once per
+// tile it reaches (a million node boxes a frame in `cullide_bvh`), so an item is half a cache line.
+// Its object and pass are its command's (CpuCommand::object, CpuBins::passOf).
 struct CpuItem {
-  std::uint32_t command = 0;
+  static constexpr std::uint32_t kMostCommands = std::uint32_t{1} << 22;  // in a recording
+  std::uint32_t command : 22 = 0;
+  std::uint32_t count : 7 = 0;  // triangles (at most kChunkTriangles), or 1 box
+  std::uint32_t test : 1 = 0;
+  std::uint32_t answerEach : 1 = 0;  // a test answering per triangle (answer + i for its i-th)
+  std::uint32_t box : 1 = 0;         // one box (else a chunk of triangles)
   // Range: its first mesh triangle; Listed: its first entry of CpuRecording::listed; Boxes: its
   // box in CpuRecording::boxes.
   std::uint32_t first = 0;
-  std::uint32_t count = 0;  // triangles, or 1 box
-  std::uint32_t object = 0;
   QueryIndex answer = 0;  // a test's (first) answer
-  std::uint32_t pass = 0;
-  bool test = false;
-  bool answerEach = false;  // a test answering per triangle (answer + i for its i-th)
-  bool box = false;         // one box (else a chunk of triangles)
+  // Chunks: its entry of CpuBins::parts.
+  std::uint32_t parts = 0;
   // Every pixel any of its pieces covers lies in `rect` (empty: none in the frame), and every key
   // it tests or writes there (its offsets toward "occluded" included) in [kLo, kHi].
   PixelRect rect;
   float kLo = 0.f;
   float kHi = 0.f;
-  // Chunks: its entry of CpuBins::parts.
-  std::uint32_t parts = 0;
 };
+static_assert(sizeof(CpuItem) == 32);
+static_assert(kChunkTriangles < (1u << 7), "an item's count is 7 bits");
 
 // A chunk item's rectangle per part of kPartTriangles triangles, in order.
 using CpuItemParts = std::array<PixelRect, kChunkTriangles / kPartTriangles>;
@@ -77,7 +81,7 @@ struct CpuBins {
   std::vector<std::uint32_t> firstItem;  // per command, and one past the last
   std::vector<CpuChain> chains;          // the first chainCount are this recording's
   std::size_t chainCount = 0;
-  std::vector<std::uint32_t> passOf;      // binning's scratch: each command's pass
+  std::vector<std::uint32_t> passOf;      // each command's pass
   std::vector<std::uint32_t> firstParts;  // binning's scratch: each command's first parts entry
   // Binning's scratch: runs of items bounded as one task (command, first and end item in it).
   std::vector<std::array<std::uint32_t, 3>> itemTasks;

@@ -80,9 +80,10 @@ void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuComman
   const double wy0 = window.y0 - below, wy1 = window.y1 + above;
   const CpuItemParts& partRects = run.bins.parts[item.parts];
   std::size_t kept = 0;
-  for (std::uint32_t part = 0; part < item.count; part += kPartTriangles) {
+  const std::uint32_t count = item.count;
+  for (std::uint32_t part = 0; part < count; part += kPartTriangles) {
     if (!partRects[part / kPartTriangles].overlaps(window)) continue;
-    const std::uint32_t end = std::min(item.count, part + kPartTriangles);
+    const std::uint32_t end = std::min(count, part + kPartTriangles);
     for (std::uint32_t i = part; i < end; ++i) {
       const std::uint32_t tri = triangleAt(i);
       if (tri / kChunkTriangles != chunk) {

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "core/Errors.h"
 #include "culling/visibility/DrawChecks.h"
@@ -133,6 +135,10 @@ CpuCommand& CpuRasterBackend::record(CpuCommand::Role role, CpuCommand::Source s
     pass.firstCommand = static_cast<std::uint32_t>(recording.commands.size());
     recording.passes.push_back(pass);
   }
+  // (Binning numbers a recording's commands in CpuItem::command's bits.)
+  if (recording.commands.size() >= CpuItem::kMostCommands)
+    throw std::length_error("cpu backend: more than " + std::to_string(CpuItem::kMostCommands) +
+                            " draws between two fetches");
   sequence_.draw(role == CpuCommand::Role::Test);
   CpuCommand& c = recording.commands.emplace_back();
   c.role = role;

@@ -41,12 +41,20 @@ bool storedDecides(const CpuDepthBuffer& depth, BlockMask mask, float sign, floa
   return true;
 }
 
+// What an item's command says of it: its pass, its object.
+const RasterPass& passOf(const CpuRun& run, const CpuItem& item) {
+  return run.recording.passes[run.bins.passOf[item.command]].raster;
+}
+std::uint32_t objectOf(const CpuRun& run, const CpuItem& item) {
+  return run.recording.commands[item.command].object;
+}
+
 // The pieces of an item that reach the buffer's window, in its pass' screen space.
 void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
               const CpuDepthBuffer& depth, CpuPieces& pieces) {
   const CpuRecording& recording = run.recording;
   const CpuCommand& c = recording.commands[item.command];
-  const RasterPass& raster = recording.passes[item.pass].raster;
+  const RasterPass& raster = passOf(run, item);
   if (c.source == CpuCommand::Source::Boxes)
     boxPieces(run.bins.boxCubes[item.first], c.role, raster.conservative, pieces);
   else
@@ -58,13 +66,14 @@ void writeItem(CpuDepthBuffer& depth, const CpuScene& scene, const CpuRun& run, 
                CpuTileWork& work) {
   CpuPieces pieces;
   piecesOf(scene, run, item, depth, pieces);
-  const RasterPass& raster = run.recording.passes[item.pass].raster;
+  const RasterPass& raster = passOf(run, item);
+  const std::uint32_t object = objectOf(run, item);
   if (pieces.areQuads)
     writePieces<ScreenQuad>(depth, raster, {pieces.quads.data(), pieces.count}, work.raster,
-                            item.object);
+                            object);
   else
     writePieces<ScreenTriangle>(depth, raster, {pieces.triangles.data(), pieces.count}, work.raster,
-                                item.object);
+                                object);
   ++work.writesRasterised;
 }
 
@@ -101,7 +110,7 @@ void drawPending(TileAt tile, const CpuScene& scene, CpuPendingWrite& p, BlockMa
                  CpuTileWork& work) {
   CpuTileState& state = tile.state;
   const CpuItem& item = p.run->bins.items[p.item];
-  const RasterPass& raster = p.run->recording.passes[item.pass].raster;
+  const RasterPass& raster = passOf(*p.run, item);
   CpuPieces pieces;
   if (p.firstPrepared == CpuPendingWrite::kNotSetUp) {
     piecesOf(scene, *p.run, item, state.depth, pieces);
@@ -210,14 +219,14 @@ bool answersEachTriangle(const CpuItem& item, const CpuPieces& pieces) {
 // writes it may read are, drawing those first, block by block) and clears the answers it finds
 // occluded. With the early-out, a batch's triangles another tile found occluded are not tested.
 void testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
-                const CpuItem& item, bool earlyOut, CpuAnswers answers, CpuTileWork& work,
-                PendingBlocks* pending = nullptr) {
+                const CpuItem& item, std::uint32_t object, bool earlyOut, CpuAnswers answers,
+                CpuTileWork& work, PendingBlocks* pending = nullptr) {
   if (answersEachTriangle(item, pieces)) {
     std::uint8_t visible[kChunkTriangles];
     for (std::size_t i = 0; i < pieces.count; ++i)
       visible[i] = !earlyOut || answers.visible(item.answer + pieces.offset[i]);
     testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster,
-                     item.object, pending);
+                     object, pending);
     for (std::size_t i = 0; i < pieces.count; ++i)
       if (!visible[i]) answers.occlude(item.answer + pieces.offset[i]);
     return;
@@ -225,9 +234,9 @@ void testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass
   const bool occluded =
       pieces.areQuads
           ? testQuadsUntilOccluded(depth, raster, {pieces.quads.data(), pieces.count}, work.raster,
-                                   item.object, pending) < pieces.count
+                                   object, pending) < pieces.count
           : testTrianglesUntilOccluded(depth, raster, {pieces.triangles.data(), pieces.count},
-                                       work.raster, item.object, pending) < pieces.count;
+                                       work.raster, object, pending) < pieces.count;
   if (occluded) answers.occlude(item.answer);
 }
 
@@ -237,6 +246,7 @@ struct TestResolution {
   TileAt tile;
   const CpuScene& scene;
   const CpuItem& item;
+  std::uint32_t object;  // the item's
   bool orderIndependent;
   CpuTileWork& work;
 };
@@ -244,7 +254,7 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
   auto& t = *static_cast<TestResolution*>(context);
   CpuTileState& state = t.tile.state;
   // Every write pending there behind the piece: none to draw, the list as it is.
-  const float read = nearestRead(state, block, t.orderIndependent, t.item.object);
+  const float read = nearestRead(state, block, t.orderIndependent, t.object);
   if (read > zHi) return read <= t.item.kHi;
   const BlockMask bit = BlockMask{1} << block;
   bool left = false;
@@ -252,9 +262,9 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
   CpuPendingOthers others;
   state.pendingIn.keepIf(block, [&](std::uint32_t i) {
     CpuPendingWrite& p = state.pending[i];
-    if (!canOcclude(p, zHi, t.orderIndependent, t.item.object)) {
+    if (!canOcclude(p, zHi, t.orderIndependent, t.object)) {
       // Behind this piece; maybe not behind a later one of the test.
-      left = left || canOcclude(p, t.item.kHi, t.orderIndependent, t.item.object);
+      left = left || canOcclude(p, t.item.kHi, t.orderIndependent, t.object);
       if (t.orderIndependent) others.add(nearest, p.kLo, p.object);
       nearest = std::min(nearest, p.kLo);
       return true;
@@ -338,7 +348,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       }
     }
     const CpuItem& item = run.bins.items[i];
-    const RasterPass& raster = run.recording.passes[item.pass].raster;
+    const RasterPass& raster = passOf(run, item);
     enterPass(at, scene, raster, work);
     if (!item.test) {
       ++work.writes;
@@ -356,7 +366,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
         drawAllPending(at, scene, work);
         clearPending(at);
       }
-      addPending(at, scene, {blocks, item.kLo, item.kHi, item.object, &run, i},
+      addPending(at, scene, {blocks, item.kLo, item.kHi, objectOf(run, item), &run, i},
                  raster.orderIndependent, evaluation.mostPendingInBlock, work);
       if (state.pendingBlocks == 0) clearPending(at);
       continue;
@@ -368,8 +378,9 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     }
     const BlockMask blocks =
         evaluation.demandDriven ? blocksUnder(state.depth, item.rect.within(inTile)) : BlockMask{0};
+    const std::uint32_t object = objectOf(run, item);
     const BlockMask reading =
-        blocksReadingPending(state, blocks, item.kHi, raster.orderIndependent, item.object);
+        blocksReadingPending(state, blocks, item.kHi, raster.orderIndependent, object);
     const bool readsPending = reading != 0;
     if (evaluation.demandDriven && !readsPending &&
         storedDecides<true>(state.depth, blocks, raster.sign, item.kHi)) {
@@ -379,16 +390,17 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     CpuPieces pieces;
     piecesOf(scene, run, item, state.depth, pieces);
     if (!readsPending) {
-      testPieces(state.depth, pieces, raster, item, evaluation.earlyOut, answers, work);
+      testPieces(state.depth, pieces, raster, item, object, evaluation.earlyOut, answers, work);
       continue;
     }
     // Against what the tile holds first: occluded there, the pending writes stay pending. Visible
     // there, the blocks with pending writes it may read are tested again, each once the writes
     // that can lie in front of the test's piece are drawn there, until a piece is occluded. (The
     // two steps share each piece's set-up; a batch's triangles take both one triangle at a time.)
-    TestResolution resolution{at, scene, item, raster.orderIndependent, work};
+    TestResolution resolution{at, scene, item, object, raster.orderIndependent, work};
     PendingBlocks unresolved{reading, reading, resolveForTest, &resolution};
-    testPieces(state.depth, pieces, raster, item, evaluation.earlyOut, answers, work, &unresolved);
+    testPieces(state.depth, pieces, raster, item, object, evaluation.earlyOut, answers, work,
+               &unresolved);
     if (state.pendingBlocks == 0) clearPending(at);
   }
   releasePrepared(at);
