@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -16,6 +17,9 @@
 #include "culling/visibility/cpu/CpuRasteriser.h"
 
 namespace cdb {
+
+// Binning's pixel rectangles (PixelRect) hold a frame's pixel coordinates in 16 bits.
+static_assert(CpuRasterBackend::kMaxResolution - 1 <= std::numeric_limits<std::int16_t>::max());
 
 namespace {
 

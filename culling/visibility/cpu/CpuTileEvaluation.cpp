@@ -41,8 +41,8 @@ bool storedDecides(const CpuDepthBuffer& depth, BlockMask mask, float sign, floa
   return true;
 }
 
-// What an item's command says of it: its pass, its object.
-const RasterPass& passOf(const CpuRun& run, const CpuItem& item) {
+// What an item's command says of it: its pass' rasterisation, its object.
+const RasterPass& rasterOf(const CpuRun& run, const CpuItem& item) {
   return run.recording.passes[run.bins.passOf[item.command]].raster;
 }
 std::uint32_t objectOf(const CpuRun& run, const CpuItem& item) {
@@ -54,7 +54,7 @@ void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
               const CpuDepthBuffer& depth, CpuPieces& pieces) {
   const CpuRecording& recording = run.recording;
   const CpuCommand& c = recording.commands[item.command];
-  const RasterPass& raster = passOf(run, item);
+  const RasterPass& raster = rasterOf(run, item);
   if (c.source == CpuCommand::Source::Boxes)
     boxPieces(run.bins.boxCubes[item.first], c.role, raster.conservative, pieces);
   else
@@ -66,7 +66,7 @@ void writeItem(CpuDepthBuffer& depth, const CpuScene& scene, const CpuRun& run, 
                CpuTileWork& work) {
   CpuPieces pieces;
   piecesOf(scene, run, item, depth, pieces);
-  const RasterPass& raster = passOf(run, item);
+  const RasterPass& raster = rasterOf(run, item);
   const std::uint32_t object = objectOf(run, item);
   if (pieces.areQuads)
     writePieces<ScreenQuad>(depth, raster, {pieces.quads.data(), pieces.count}, work.raster,
@@ -110,7 +110,7 @@ void drawPending(TileAt tile, const CpuScene& scene, CpuPendingWrite& p, BlockMa
                  CpuTileWork& work) {
   CpuTileState& state = tile.state;
   const CpuItem& item = p.run->bins.items[p.item];
-  const RasterPass& raster = passOf(*p.run, item);
+  const RasterPass& raster = rasterOf(*p.run, item);
   CpuPieces pieces;
   if (p.firstPrepared == CpuPendingWrite::kNotSetUp) {
     piecesOf(scene, *p.run, item, state.depth, pieces);
@@ -348,7 +348,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       }
     }
     const CpuItem& item = run.bins.items[i];
-    const RasterPass& raster = passOf(run, item);
+    const RasterPass& raster = rasterOf(run, item);
     enterPass(at, scene, raster, work);
     if (!item.test) {
       ++work.writes;
