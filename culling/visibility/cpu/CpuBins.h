@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/GrowOnlyArray.h"
 #include "culling/visibility/cpu/CpuMeshBounds.h"
 #include "culling/visibility/cpu/CpuPixelRect.h"
 #include "culling/visibility/cpu/CpuRecording.h"
@@ -59,7 +60,7 @@ struct CpuChain {
   float clearValue = 1.f;         // the value its first pass clears to (unless it continues)
   // Items of tile t: binned[offsets[t] .. offsets[t + 1]), ascending (issue order).
   std::vector<std::uint32_t> offsets;
-  std::vector<std::uint32_t> binned;
+  GrowOnlyArray<std::uint32_t> binned;
   std::vector<std::uint32_t> tilesUsed;  // tiles with at least one item, ascending
   std::vector<std::uint32_t> fill;       // binning's scratch: per run of items, per tile
   // Binning's scratch: the tile column (row) of each pixel column (row), for tileOfFor's
@@ -72,12 +73,12 @@ struct CpuChain {
 };
 
 struct CpuBins {
-  std::vector<CpuItem> items;
+  GrowOnlyArray<CpuItem> items;
   // Per CpuRecording::boxes, under the matrix of the commands that draw it: the unit cube's
   // matrix into screen space, which binning bounds the box's items from and a tile sets its faces
   // up from.
-  std::vector<ScreenMatrix> boxCubes;
-  std::vector<CpuItemParts> parts;       // of the chunk items (CpuItem::parts)
+  GrowOnlyArray<ScreenMatrix> boxCubes;
+  GrowOnlyArray<CpuItemParts> parts;     // of the chunk items (CpuItem::parts)
   std::vector<std::uint32_t> firstItem;  // per command, and one past the last
   std::vector<CpuChain> chains;          // the first chainCount are this recording's
   std::size_t chainCount = 0;

@@ -181,7 +181,7 @@ CpuCommand& CpuRasterBackend::recordRange(CpuCommand::Role role, const MeshRange
 CpuCommand& CpuRasterBackend::recordListed(CpuCommand::Role role, ObjectId object,
                                            std::span<const std::uint32_t> triangles) {
   CpuRecording& recording = open_->recording;
-  std::vector<std::uint32_t>& listed = recording.listed;
+  auto& listed = recording.listed;
   CpuCommand& c = record(role, CpuCommand::Source::Listed, object);
   c.count = static_cast<std::uint32_t>(triangles.size());
   // The same list as the object's last one (a batch test and the write of its triangles, both of
@@ -209,7 +209,7 @@ CpuCommand& CpuRasterBackend::recordListed(CpuCommand::Role role, ObjectId objec
   sameRole = index + 1;
   if (c.listedOf == CpuCommand::kNone) {
     c.first = static_cast<std::uint32_t>(listed.size());
-    listed.insert(listed.end(), triangles.begin(), triangles.end());
+    listed.append(triangles.begin(), triangles.end());
   }
   ++counters_.draws;
   counters_.trianglesDrawn += triangles.size();
@@ -219,7 +219,7 @@ CpuCommand& CpuRasterBackend::recordListed(CpuCommand::Role role, ObjectId objec
 CpuCommand& CpuRasterBackend::recordBoxes(CpuCommand::Role role, ObjectId object,
                                           std::span<const OrientedBox> boxes) {
   CpuRecording& recording = open_->recording;
-  std::vector<OrientedBox>& all = recording.boxes;
+  auto& all = recording.boxes;
   CpuCommand& c = record(role, CpuCommand::Source::Boxes, object);
   c.count = static_cast<std::uint32_t>(boxes.size());
   // The same boxes as the object's last box command under the same matrix (a node's test and
@@ -249,7 +249,7 @@ CpuCommand& CpuRasterBackend::recordBoxes(CpuCommand::Role role, ObjectId object
   sameRole = index + 1;
   if (!c.sharesBoxes()) {
     c.first = static_cast<std::uint32_t>(all.size());
-    all.insert(all.end(), boxes.begin(), boxes.end());
+    all.append(boxes.begin(), boxes.end());
   }
   ++counters_.draws;
   counters_.trianglesDrawn += 12u * boxes.size();  // a box is the cube's 12 triangles, as on GL

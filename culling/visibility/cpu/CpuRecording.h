@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/GrowOnlyArray.h"
 #include "core/OrientedBox.h"
 #include "culling/visibility/VisibilityBackend.h"
 #include "culling/visibility/cpu/CpuTriangleSetup.h"
@@ -74,11 +75,11 @@ struct CpuPass {
 
 struct CpuRecording {
   std::vector<CpuPass> passes;
-  std::vector<CpuCommand> commands;
-  std::vector<std::uint32_t> listed;
+  GrowOnlyArray<CpuCommand> commands;
+  GrowOnlyArray<std::uint32_t> listed;
   // In draw order: per entry of `listed`, its offset in its command as issued.
   std::vector<std::uint32_t> listedOffset;
-  std::vector<OrientedBox> boxes;
+  GrowOnlyArray<OrientedBox> boxes;
   // Per object and role (2 object + 1 for writes): 1 + its last Listed command, its last Range
   // command and its last box command (0: none yet).
   std::vector<std::uint32_t> lastListed;

@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "core/GrowOnlyArray.h"
 #include "culling/visibility/cpu/CpuMeshBounds.h"
 #include "culling/visibility/cpu/CpuPixelRect.h"
 #include "culling/visibility/cpu/CpuRecording.h"
@@ -89,8 +90,8 @@ class CpuScreenVertices {
     std::size_t firstChunk = 0;   // in the states (and kChunkParts times that in parts_)
   };
   std::vector<Set> sets_;
-  mutable std::vector<CpuScreenVertex> positions_;
-  mutable std::vector<CpuPartScreenBounds> parts_;
+  mutable GrowOnlyArray<CpuScreenVertex> positions_;
+  mutable GrowOnlyArray<CpuPartScreenBounds> parts_;
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> states_;
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> partStates_;
   std::size_t stateCapacity_ = 0;

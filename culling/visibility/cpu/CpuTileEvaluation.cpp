@@ -84,19 +84,20 @@ void drawPrepared(CpuPreparedPieces<Piece>& prepared, CpuDepthBuffer& depth,
                   const RasterPass& raster, const CpuPieces& pieces, CpuPendingWrite& p,
                   BlockMask blocks, CpuTileWork& work) {
   if (p.firstPrepared == CpuPendingWrite::kNotSetUp) {
-    PreparedWrite<Piece>* room = prepared.room(pieces.count);
+    const std::uint32_t first = prepared.room(pieces.count);
+    PreparedWrite<Piece>* room = prepared.at(first);
     std::size_t n;
     if constexpr (std::is_same_v<Piece, ScreenQuad>)
       n = prepareWrites(depth, raster, {pieces.quads.data(), pieces.count}, room);
     else
       n = prepareWrites(depth, raster, {pieces.triangles.data(), pieces.count}, room);
-    p.firstPrepared = static_cast<std::uint32_t>(prepared.used);
+    p.firstPrepared = first;
     p.preparedCount = static_cast<std::uint32_t>(n);
-    prepared.used += n;
+    prepared.add(first, n);
     if (!p.counted) ++work.writesRasterised;
     p.counted = true;
   }
-  writePrepared(depth, raster, {prepared.storage.data() + p.firstPrepared, p.preparedCount},
+  writePrepared(depth, raster, {prepared.at(p.firstPrepared), p.preparedCount},
                 blocks & p.remaining, work.raster, p.object);
 }
 

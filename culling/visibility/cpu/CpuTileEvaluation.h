@@ -17,6 +17,7 @@
 #include <span>
 #include <vector>
 
+#include "core/GrowOnlyArray.h"
 #include "culling/visibility/cpu/CpuBins.h"
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
 #include "culling/visibility/cpu/CpuMeshBounds.h"
@@ -62,17 +63,26 @@ struct CpuPendingWrite {
   bool counted = false;  // in CpuTileWork::writesRasterised
 };
 
-// Prepared pieces of a tile's pending writes: storage that only grows (a prepared write is set up
-// in place, so none is constructed twice), `used` of it in use.
+// Prepared pieces of a tile's pending writes, set up in place: storage that only grows, in place
+// (a tile of a dragon pile can hold a hundred thousand prepared pieces; a vector grown by copying,
+// and filled when allocated, made that tens of megabytes of fresh pages, each a page fault, in the
+// frames where the pile grows).
 template <class Piece>
-struct CpuPreparedPieces {
-  std::vector<PreparedWrite<Piece>> storage;
-  std::size_t used = 0;
-  // Room for `count` more at storage[used ...].
-  PreparedWrite<Piece>* room(std::size_t count) {
-    if (storage.size() < used + count) storage.resize(std::max(used + count, 2 * storage.size()));
-    return storage.data() + used;
+class CpuPreparedPieces {
+ public:
+  // Room for `count` pieces prepared next (prepareWrites writes them), by the index of the first.
+  std::uint32_t room(std::size_t count) {
+    const auto first = static_cast<std::uint32_t>(storage_.size());
+    storage_.resizeForOverwrite(first + count);
+    return first;
   }
+  // Of the room at `first`, the first `count` pieces are prepared: the rest goes back.
+  void add(std::uint32_t first, std::size_t count) { storage_.resizeForOverwrite(first + count); }
+  [[nodiscard]] PreparedWrite<Piece>* at(std::uint32_t index) { return storage_.data() + index; }
+  void clear() { storage_.clear(); }
+
+ private:
+  GrowOnlyArray<PreparedWrite<Piece>> storage_;
 };
 
 // The prepared pieces of the tile a thread evaluates: one storage per thread, reused tile after
@@ -80,7 +90,7 @@ struct CpuPreparedPieces {
 struct CpuPreparedScratch {
   CpuPreparedPieces<ScreenTriangle> triangles;
   CpuPreparedPieces<ScreenQuad> quads;
-  void clear() { triangles.used = 0, quads.used = 0; }
+  void clear() { triangles.clear(), quads.clear(); }
 };
 
 // Per block of a tile, a list of indices in the order pushed: the first kInline of each in one
