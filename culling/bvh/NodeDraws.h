@@ -7,9 +7,10 @@
 
 namespace cdb {
 
-// The boxes of `object`'s active nodes, in the frontier's order, appended to `boxes`.
-inline void appendNodeBoxes(const NodeFrontier& frontier, ObjectId object,
-                            std::vector<OrientedBox>& boxes) {
+// The boxes of `object`'s active nodes, in the frontier's order, appended to `boxes` (a
+// std::vector<OrientedBox> or a GrowOnlyArray of them).
+template <class Boxes>
+void appendNodeBoxes(const NodeFrontier& frontier, ObjectId object, Boxes& boxes) {
   for (std::uint32_t node : frontier.nodes(object)) boxes.push_back(frontier.box(object, node));
 }
 

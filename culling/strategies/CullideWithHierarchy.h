@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/GrowOnlyArray.h"
 #include "culling/CullingStrategy.h"
 #include "culling/DetectorRegistry.h"
 #include "culling/bvh/NodeFrontier.h"
@@ -37,10 +38,10 @@ class CullideWithHierarchy final : public CullingStrategy {
   VisibilityBackend* backend_ = nullptr;
   SceneHierarchies hierarchies_;
   NodeFrontier frontier_;
-  std::vector<std::uint8_t> visible_;  // query answers, reused across frames
-  std::vector<OrientedBox> boxes_;     // the objects' node boxes along one axis, in turn
+  std::vector<std::uint8_t> visible_;    // query answers, reused across frames
+  GrowOnlyArray<OrientedBox> boxes_;     // the objects' node boxes along one axis, in turn
   std::vector<std::size_t> boxesStart_;  // where each object's begin in boxes_, and the end
-  std::vector<std::uint8_t> keep_;     // per active node of one object
+  std::vector<std::uint8_t> keep_;       // per active node of one object
 };
 
 }  // namespace cdb
