@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <span>
 #include <tuple>
 
 #include "culling/ViewAxis.h"
@@ -215,13 +216,13 @@ CullingResult HierarchicalCollisionIndependentSets::cull(const FrameInput& frame
 
   std::vector<std::vector<ObjectId>> work(1);
   for (ObjectId o = 0; o < objectCount; ++o) work[0].push_back(o);
-  std::vector<SetRun> runs;
   std::vector<std::vector<ObjectId>> produced;
   for (std::uint32_t level = 0; !work.empty(); ++level, axis = (axis + 1) % 3) {
     stats_.axes.push_back(axis);
     LevelCounters counters{.level = level};
     const std::uint64_t queriesBefore = backend_->counters().queries;
-    runs.resize(work.size());
+    if (runs_.size() < work.size()) runs_.resize(work.size());
+    const std::span<SetRun> runs(runs_.data(), work.size());
     for (std::size_t s = 0; s < work.size(); ++s) {
       runs[s].objects = std::move(work[s]);
       for (ObjectId o : runs[s].objects) counters.nodesTested += frontier_.nodes(o).size();

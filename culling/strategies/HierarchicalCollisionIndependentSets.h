@@ -93,6 +93,10 @@ class HierarchicalCollisionIndependentSets final : public CullingStrategy {
   std::map<ListKey, KeptList> lists_;
   std::uint64_t frameCount_ = 0;
   FrameStats stats_;
+  // The sets under test at a level, kept from level to level and frame to frame (drawSet makes a
+  // run afresh): their tables, sized for thousands of nodes, keep their memory, where made anew
+  // they came from fresh pages (page faults) at every level of every frame.
+  std::vector<SetRun> runs_;
   std::vector<std::uint8_t> visible_;                 // the level's query answers
   std::vector<std::uint8_t> bySlot_;                  // one answer per slot
   std::vector<std::uint8_t> keep_;                    // per active node of one object
