@@ -33,6 +33,20 @@
 
 namespace cdb {
 
+// AddressSanitizer checks heap blocks, not reserved address space: in its builds the arrays grow
+// on the heap. (GCC says so by __SANITIZE_ADDRESS__, clang by __has_feature.)
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kGrowOnlyArrayOnHeap = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kGrowOnlyArrayOnHeap = true;
+#else
+inline constexpr bool kGrowOnlyArrayOnHeap = false;
+#endif
+#else
+inline constexpr bool kGrowOnlyArrayOnHeap = false;
+#endif
+
 template <class T>
 class GrowOnlyArray {
   static_assert(std::is_trivially_destructible_v<T>, "elements are never destroyed");
@@ -119,8 +133,7 @@ class GrowOnlyArray {
 
   void grow(std::size_t n) {
     if (n > kReservedBytes / sizeof(T)) throw std::length_error("GrowOnlyArray: too many elements");
-#if !defined(__SANITIZE_ADDRESS__)
-    if (capacity_ == 0 && reserved_ == nullptr) reserveAddressSpace();
+    if (!kGrowOnlyArrayOnHeap && capacity_ == 0 && reserved_ == nullptr) reserveAddressSpace();
     if (reserved_ != nullptr) {
       // Make usable up to the next step past n elements (the address space is already there).
       const std::size_t bytes = (n * sizeof(T) + kStepBytes - 1) / kStepBytes * kStepBytes;
@@ -128,7 +141,6 @@ class GrowOnlyArray {
       capacity_ = bytes / sizeof(T);
       return;
     }
-#endif
     // As a vector: a larger block, the elements moved into it.
     const std::size_t wanted = std::max(n, 2 * capacity_);
     T* larger = static_cast<T*>(::operator new (wanted * sizeof(T), std::align_val_t{alignof(T)}));
