@@ -127,6 +127,11 @@ class GrowOnlyArray {
   }
 
  private:
+  static constexpr std::size_t wholeSteps(std::size_t bytes) {
+    return (bytes + kStepBytes - 1) / kStepBytes * kStepBytes;
+  }
+  static_assert(sizeof(T) <= kStepBytes, "capacity_ elements end in the last usable step");
+
   void makeRoom(std::size_t n) {
     if (n > capacity_) grow(n);
   }
@@ -135,9 +140,12 @@ class GrowOnlyArray {
     if (n > kReservedBytes / sizeof(T)) throw std::length_error("GrowOnlyArray: too many elements");
     if (!kGrowOnlyArrayOnHeap && capacity_ == 0 && reserved_ == nullptr) reserveAddressSpace();
     if (reserved_ != nullptr) {
-      // Make usable up to the next step past n elements (the address space is already there).
-      const std::size_t bytes = (n * sizeof(T) + kStepBytes - 1) / kStepBytes * kStepBytes;
-      if (::mprotect(reserved_, bytes, PROT_READ | PROT_WRITE) != 0) throw std::bad_alloc();
+      // The steps past those usable already, up to the one holding n elements (the address space
+      // is already there; capacity_ elements end in the last usable step).
+      const std::size_t usable = wholeSteps(capacity_ * sizeof(T));
+      const std::size_t bytes = wholeSteps(n * sizeof(T));
+      if (::mprotect(reserved_ + usable, bytes - usable, PROT_READ | PROT_WRITE) != 0)
+        throw std::bad_alloc();
       capacity_ = bytes / sizeof(T);
       return;
     }
