@@ -63,7 +63,7 @@ struct CpuPendingWrite {
   bool counted = false;  // in CpuTileWork::writesRasterised
 };
 
-// Prepared pieces of a tile's pending writes, set up in place: storage that only grows, in place
+// Prepared pieces of a tile's pending writes, set up in storage that only grows and never moves
 // (a tile of a dragon pile can hold a hundred thousand prepared pieces; a vector grown by copying,
 // and filled when allocated, made that tens of megabytes of fresh pages, each a page fault, in the
 // frames where the pile grows).
