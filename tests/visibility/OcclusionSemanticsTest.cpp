@@ -3,9 +3,11 @@
 // the DepthUse passes; boxes; batches answer each piece; misuse is reported.
 #include <gtest/gtest.h>
 
+#include <numeric>
 #include <tuple>
 
 #include "core/Errors.h"
+#include "scenes/ProceduralMeshes.h"
 #include "tests/visibility/GlTestSupport.h"
 
 namespace cdb {
@@ -214,6 +216,42 @@ TEST_P(OcclusionSemantics, BatchesAnswerEachPieceAgainstWhatWasWrittenBefore) {
   EXPECT_EQ(answers[afterWrite], 0) << "C behind the front box written after the batches";
   EXPECT_EQ(answers[afterWrite + 1], 0) << "C behind the front box written after the batches";
   EXPECT_EQ(backend_->counters().queries, 11u);
+}
+
+// A batch over a whole closed mesh answers every triangle, those facing the viewer too: a backend
+// may draw only the faces that decide a closed mesh's single answer (the farthest depth at a pixel
+// lies on a face turned away), but each triangle of a batch is its own test, as when listed.
+TEST_P(OcclusionSemantics, BatchOverAWholeClosedMeshAnswersEveryTriangle) {
+  Mesh torus = makeTorus(0.5, 0.2, 12, 8);  // around z (its y axis turned onto z), behind A
+  for (Eigen::Vector3f& v : torus.vertices) v = Eigen::Vector3f(v.x(), v.z(), v.y() + 1.f);
+  const SceneGeometry scene = test::sceneOf({squareMesh(0, 0, 0, 1), torus});
+  backend_->attachScene(scene);
+  backend_->setPoses(test::identityPoses(scene.objectCount()));
+  const std::size_t n = torus.triangleCount();
+  std::vector<std::uint32_t> all(n);
+  std::iota(all.begin(), all.end(), 0u);
+  const bool conservative = std::get<1>(GetParam());
+  for (bool written : {false, true}) {
+    backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
+    if (written) backend_->writeRange(wholeOf(scene, 0));
+    const QueryIndex whole = backend_->queryRange(wholeOf(scene, 1));
+    const QueryIndex each = backend_->queryTriangles(wholeOf(scene, 1));
+    const QueryIndex listed = backend_->queryTriangles(1, all);
+    std::vector<std::uint8_t> answers;
+    backend_->fetchResults(answers);
+    ASSERT_EQ(answers.size(), 2 * n + 1);
+    EXPECT_EQ(answers[whole], written ? 0 : 1);
+    int visible = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+      EXPECT_EQ(answers[each + t], answers[listed + t]) << "triangle " << t;
+      visible += answers[each + t];
+    }
+    // With nothing written every triangle is visible. Behind A every one is occluded in
+    // conservative mode (raw mode answers visible for those that cover no pixel centre).
+    if (!written) EXPECT_EQ(visible, static_cast<int>(n));
+    if (written && conservative) EXPECT_EQ(visible, 0) << "behind A";
+    if (written) EXPECT_LT(visible, static_cast<int>(n) / 2) << "behind A";
+  }
 }
 
 // A node's test and write draw the same boxes, and CULLIDE's two passes of a view draw them

@@ -282,6 +282,7 @@ QueryIndex CpuRasterBackend::queryTriangles(const MeshRange& range) {
   const QueryIndex q = issue(range.triangleCount);
   CpuCommand& c = recordRange(CpuCommand::Role::Test, range);
   c.query = q, c.answerEach = true;
+  c.winding = 0;  // every triangle answers for itself, those facing the viewer too
   return q;
 }
 
