@@ -30,8 +30,11 @@ void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                          const std::vector<SetMember>& ordered, const PassPair& passes,
                          TwoPassAnswers& answers) {
   const auto drawMember = [&](const SetMember& m) {
-    backend.queryTriangles(m.object, m.triangles);
-    if (m.triangles.size() == scene.meshOf(m.object).triangleCount())
+    if (m.allTriangles())
+      backend.queryTriangles(wholeMesh(scene, m.object));
+    else
+      backend.queryTriangles(m.object, m.triangles);
+    if (memberTriangleCount(scene, m) == scene.meshOf(m.object).triangleCount())
       backend.writeRange(wholeMesh(scene, m.object));
     else
       backend.writeTriangles(m.object, m.triangles);
@@ -43,13 +46,13 @@ void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
   backend.fetchResults(answers.fetched);
 
   std::size_t total = 0;
-  for (const auto& m : ordered) total += m.triangles.size();
+  for (const auto& m : ordered) total += memberTriangleCount(scene, m);
   answers.first.resize(total);
   answers.second.resize(total);
   std::size_t first1 = 0;
   std::size_t end2 = 2 * total;  // pass 2 runs members in reverse, so member i ends where i-1 began
   for (const auto& m : ordered) {
-    const std::size_t count = m.triangles.size();
+    const std::size_t count = memberTriangleCount(scene, m);
     const std::size_t first2 = end2 - count;
     for (std::size_t k = 0; k < count; ++k) {
       answers.first[first1 + k] = answers.fetched[first1 + k];
@@ -61,8 +64,8 @@ void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
 }
 
 std::vector<ObjectId> pruneObjectsTwoPass(VisibilityBackend& backend, const SceneGeometry& scene,
-                                          const std::vector<ObjectId>& order, const PassPair& passes,
-                                          TwoPassAnswers& answers) {
+                                          const std::vector<ObjectId>& order,
+                                          const PassPair& passes, TwoPassAnswers& answers) {
   objectPassAnswers(backend, scene, order, passes, answers);
   std::vector<ObjectId> kept;
   kept.reserve(order.size());
@@ -77,25 +80,23 @@ std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend, const S
   trianglePassAnswers(backend, scene, ordered, passes, answers);
   std::vector<SetMember> kept;
   std::size_t piece = 0;
-  for (auto& m : ordered) {
-    SetMember out{m.object, {}};
-    for (std::uint32_t t : m.triangles)
-      if (!answers.inBoth(piece++)) out.triangles.push_back(t);
-    if (!out.triangles.empty()) kept.push_back(std::move(out));
+  for (const auto& m : ordered) {
+    keepTriangles(
+        scene, m, piece, [&](std::size_t i) { return !answers.inBoth(i); }, kept);
+    piece += memberTriangleCount(scene, m);
   }
   return kept;
 }
 
-std::vector<SetMember> withAllTriangles(const SceneGeometry& scene, const std::vector<ObjectId>& objects) {
+std::vector<SetMember> withAllTriangles(const std::vector<ObjectId>& objects) {
   std::vector<SetMember> members;
   members.reserve(objects.size());
-  for (ObjectId o : objects) {
-    SetMember m{o, {}};
-    m.triangles.resize(scene.meshOf(o).triangleCount());
-    for (std::uint32_t t = 0; t < m.triangles.size(); ++t) m.triangles[t] = t;
-    members.push_back(std::move(m));
-  }
+  for (ObjectId o : objects) members.push_back(SetMember{o, {}});
   return members;
+}
+
+std::size_t memberTriangleCount(const SceneGeometry& scene, const SetMember& m) {
+  return m.allTriangles() ? scene.meshOf(m.object).triangleCount() : m.triangles.size();
 }
 
 CullingResult singleSetResult(const SceneGeometry& scene, std::vector<SetMember> members,
@@ -103,7 +104,7 @@ CullingResult singleSetResult(const SceneGeometry& scene, std::vector<SetMember>
   CullingResult result;
   result.counters.pcsSize = members.size();
   for (auto& m : members) {
-    result.counters.pcsTriangles += m.triangles.size();
+    result.counters.pcsTriangles += memberTriangleCount(scene, m);
     if (m.triangles.size() == scene.meshOf(m.object).triangleCount()) m.triangles.clear();
   }
   if (!members.empty()) {

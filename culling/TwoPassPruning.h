@@ -23,7 +23,9 @@ struct PassPair {
   DepthUse firstDepth = DepthUse::Fresh, secondDepth = DepthUse::Fresh;
 
   // Both passes along `view`, each with its own clear (CULLIDE).
-  static PassPair fresh(const ViewSpec& view) { return {view, view, DepthUse::Fresh, DepthUse::Fresh}; }
+  static PassPair fresh(const ViewSpec& view) {
+    return {view, view, DepthUse::Fresh, DepthUse::Fresh};
+  }
   // Pass 2 looks the other way and shares pass 1's clear (depth-sorted culling, thesis 3.2).
   static PassPair shared(const ViewSpec& view) {
     ViewSpec opposite = view;
@@ -49,9 +51,10 @@ void objectPassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                        TwoPassAnswers& answers);
 
 // Triangle level: one query per triangle, a member's triangles in one batch, then the member
-// drawn; `ordered` is pass 1's order with triangle lists explicit. An object's own triangles are
-// all tested before it is drawn, so an object never occludes itself. The answers are per
-// triangle, members after one another in pass-1 order.
+// drawn; `ordered` is pass 1's order, each member with its triangle list or none (every triangle
+// of its mesh: drawn as the whole mesh). An object's own triangles are all tested before it is
+// drawn, so an object never occludes itself. The answers are per triangle, members after one
+// another in pass-1 order, a member's in its list's order (or its mesh's).
 void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                          const std::vector<SetMember>& ordered, const PassPair& passes,
                          TwoPassAnswers& answers);
@@ -65,16 +68,39 @@ void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                                                         TwoPassAnswers& answers);
 
 // Triangle level, `ordered` consumed: the members with the triangles left, in pass-1 order,
-// dropping members left with none.
+// dropping members left with none (a member of every triangle that keeps them all keeps no list).
 [[nodiscard]] std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend,
                                                            const SceneGeometry& scene,
                                                            std::vector<SetMember> ordered,
                                                            const PassPair& passes,
                                                            TwoPassAnswers& answers);
 
-// Each object with its whole triangle list written out, for the triangle level.
-[[nodiscard]] std::vector<SetMember> withAllTriangles(const SceneGeometry& scene,
-                                                      const std::vector<ObjectId>& objects);
+// The objects as members of every triangle (no list), for the triangle level.
+[[nodiscard]] std::vector<SetMember> withAllTriangles(const std::vector<ObjectId>& objects);
+
+// How many triangles a member has: its list's, or its mesh's when it has every triangle.
+[[nodiscard]] std::size_t memberTriangleCount(const SceneGeometry& scene, const SetMember& m);
+
+// Appends to `kept` member `m` with the triangles whose piece `keep` accepts (pieces first,
+// first + 1, ..., one per triangle as memberTriangleCount counts them): nothing when it keeps
+// none, no list when a member of every triangle keeps them all.
+template <class Keep>
+void keepTriangles(const SceneGeometry& scene, const SetMember& m, std::size_t first, Keep&& keep,
+                   std::vector<SetMember>& kept) {
+  SetMember out{m.object, {}};
+  if (m.allTriangles()) {
+    const auto n = static_cast<std::uint32_t>(scene.meshOf(m.object).triangleCount());
+    for (std::uint32_t t = 0; t < n; ++t)
+      if (keep(first + t)) out.triangles.push_back(t);
+    if (out.triangles.empty()) return;
+    if (out.triangles.size() == n) out.triangles.clear();  // all of them: no list
+    kept.push_back(std::move(out));
+    return;
+  }
+  for (std::size_t k = 0; k < m.triangles.size(); ++k)
+    if (keep(first + k)) out.triangles.push_back(m.triangles[k]);
+  if (!out.triangles.empty()) kept.push_back(std::move(out));
+}
 
 // CULLIDE's two levels along its three axes: every object pruned along each axis in turn
 // (`pruneObjects(pcs, axis)`), then the triangles of the objects left (`pruneTriangles(members,
@@ -86,14 +112,15 @@ template <class PruneObjects, class PruneTriangles>
   std::vector<ObjectId> pcs(scene.objectCount());
   std::iota(pcs.begin(), pcs.end(), ObjectId{0});
   for (const auto& axis : kCullideAxes) pruneObjects(pcs, axis);
-  std::vector<SetMember> members = withAllTriangles(scene, pcs);
+  std::vector<SetMember> members = withAllTriangles(pcs);
   for (const auto& axis : kCullideAxes) pruneTriangles(members, axis);
   return members;
 }
 
 // The one potentially colliding set the triangle level leaves (none when it is empty), with its
 // counters; members keeping every triangle get the empty "all triangles" list.
-[[nodiscard]] CullingResult singleSetResult(const SceneGeometry& scene, std::vector<SetMember> members,
+[[nodiscard]] CullingResult singleSetResult(const SceneGeometry& scene,
+                                            std::vector<SetMember> members,
                                             const VisibilityCounters& work);
 
 }  // namespace cdb

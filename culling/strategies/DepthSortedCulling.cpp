@@ -78,7 +78,7 @@ CullingResult DepthSortedCulling::cull(const FrameInput& frame) {
   std::vector<ObjectId> pcs = allObjects_;
   for (int axis = 0; axis < 3; ++axis) pruneObjects(pcs, axis);
 
-  std::vector<SetMember> members = withAllTriangles(*scene_, pcs);
+  std::vector<SetMember> members = withAllTriangles(pcs);
   for (int axis = 0; axis < 3; ++axis) pruneTriangles(members, axis);
 
   return singleSetResult(*scene_, std::move(members), backend_->counters() - before);

@@ -51,20 +51,24 @@ void OrderIndependentCullide::pruneTriangles(std::vector<SetMember>& members,
   backend_->beginPass({axis, bounds_.unionOf(objects), options_.resolution},
                       DepthUse::OrderIndependent);
   for (const auto& m : members) {
-    if (m.triangles.size() == scene_->meshOf(m.object).triangleCount())
+    if (memberTriangleCount(*scene_, m) == scene_->meshOf(m.object).triangleCount())
       backend_->writeRange(wholeMesh(*scene_, m.object));
     else
       backend_->writeTriangles(m.object, m.triangles);
   }
-  for (const auto& m : members) (void)backend_->queryTriangles(m.object, m.triangles);
+  for (const auto& m : members) {
+    if (m.allTriangles())
+      (void)backend_->queryTriangles(wholeMesh(*scene_, m.object));
+    else
+      (void)backend_->queryTriangles(m.object, m.triangles);
+  }
   backend_->fetchResults(visible_);
   std::vector<SetMember> kept;
   std::size_t piece = 0;
-  for (auto& m : members) {
-    SetMember out{m.object, {}};
-    for (std::uint32_t t : m.triangles)
-      if (!visible_[piece++]) out.triangles.push_back(t);
-    if (!out.triangles.empty()) kept.push_back(std::move(out));
+  for (const auto& m : members) {
+    keepTriangles(
+        *scene_, m, piece, [&](std::size_t i) { return !visible_[i]; }, kept);
+    piece += memberTriangleCount(*scene_, m);
   }
   members = std::move(kept);
 }
@@ -75,7 +79,8 @@ CullingResult OrderIndependentCullide::cull(const FrameInput& frame) {
   bounds_.update(frame.poses);
 
   std::vector<SetMember> members = pruneCullideLevels(
-      *scene_, [this](std::vector<ObjectId>& pcs, const Eigen::Vector3d& axis) { pruneObjects(pcs, axis); },
+      *scene_,
+      [this](std::vector<ObjectId>& pcs, const Eigen::Vector3d& axis) { pruneObjects(pcs, axis); },
       [this](std::vector<SetMember>& m, const Eigen::Vector3d& axis) { pruneTriangles(m, axis); });
   return singleSetResult(*scene_, std::move(members), backend_->counters() - before);
 }
