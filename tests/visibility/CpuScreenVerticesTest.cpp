@@ -131,7 +131,9 @@ TEST_F(CpuScreenVerticesTest, ThreadsAskingAtOnceGetMadeChunks) {
     std::array<CpuPartScreenBounds, CpuScreenVertices::kChunkParts> own;
     if (vertices.parts(c, chunk, meshParts, make, own)[0].rect.x0 != static_cast<int>(chunk) * 4)
       ++wrong;  // made before it is read, by this thread or another
-    const CpuScreenVertex* v = vertices.chunk(c, bounds[0], chunk);
+    bool finite = false;
+    const CpuScreenVertex* v = vertices.chunk(c, bounds[0], chunk, finite);
+    EXPECT_TRUE(finite);
     const Eigen::Vector3f& p = bounds[0].chunkPositions[bounds[0].chunkVertexStart[chunk]];
     if (v[0].x != screenPoint(matrix(10.0), p.x(), p.y(), p.z()).x) ++wrong;  // transformed
   });

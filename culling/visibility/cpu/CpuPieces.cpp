@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "culling/visibility/cpu/CpuPassSpace.h"
 
@@ -62,6 +63,7 @@ unsigned decidingFaces(const ScreenMatrix& cube, CpuCommand::Role role) {
 void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuCommand& c,
                  const CpuItem& item, const PixelRect& window, double marginPx, CpuPieces& out) {
   out.areQuads = false;
+  out.hasExtents = true;
   out.count = 0;
   const bool listed = c.source == CpuCommand::Source::Listed;
   const auto triangleAt = [&](std::uint32_t i) {
@@ -71,6 +73,8 @@ void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuComman
   // list is in ascending order almost always, so one chunk's screen vertices are at hand at a time.
   std::uint32_t chunk = ~std::uint32_t{0};
   const CpuScreenVertex* vertices = nullptr;
+  bool finite = true;  // every coordinate of the chunk's vertices
+  TriangleExtents& e = out.extents;
   // A pixel box lies within [minX - margin - 1, maxX + margin] (and the same in y), in either
   // rasterisation mode (setupBounds: from ceil(minX - margin) - 1 to floor(maxX + margin); raw
   // mode's centre rule lies within), so it meets the window only if maxX >= x0 - margin and
@@ -88,7 +92,7 @@ void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuComman
       const std::uint32_t tri = triangleAt(i);
       if (tri / kChunkTriangles != chunk) {
         chunk = tri / kChunkTriangles;
-        vertices = run.vertices.chunk(c, bounds, chunk);
+        vertices = run.vertices.chunk(c, bounds, chunk, finite);
       }
       ScreenTriangle& s = out.triangles[kept];
       const auto& at = bounds.cornersInChunk[tri];
@@ -103,9 +107,14 @@ void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuComman
       const double maxY = std::max({s.y[0], s.y[1], s.y[2]});
       if (maxX < wx0 || minX > wx1 || maxY < wy0 || minY > wy1) continue;
       if (!drawnForRole(s, c.winding, c.role)) continue;
+      e.minX[kept] = finite || raster_detail::allFinite(s) ? minX : std::numeric_limits<double>::quiet_NaN();
+      e.maxX[kept] = maxX, e.minY[kept] = minY, e.maxY[kept] = maxY;
+      e.minK[kept] = std::min({s.k[0], s.k[1], s.k[2]});
+      e.maxK[kept] = std::max({s.k[0], s.k[1], s.k[2]});
       out.offset[kept++] = static_cast<std::uint8_t>(i);
     }
   }
+  if (kept != 0) e.padFrom(kept - 1, (kept + 7) / 8 * 8);
   out.count = kept;
 }
 
@@ -126,6 +135,7 @@ void boxPieces(const ScreenMatrix& cube, CpuCommand::Role role, bool conservativ
   }
   const unsigned keep = decidingFaces(cube, role);
   out.areQuads = conservative;
+  out.hasExtents = false;
   std::size_t n = 0;
   for (int f = 0; f < 6; ++f) {
     if ((keep >> f & 1u) == 0) continue;

@@ -9,6 +9,7 @@
 
 #include "culling/visibility/cpu/CpuBins.h"
 #include "culling/visibility/cpu/CpuMeshBounds.h"
+#include "culling/visibility/cpu/CpuRasteriser.h"
 #include "culling/visibility/cpu/CpuRecording.h"
 #include "culling/visibility/cpu/CpuTriangleSetup.h"
 
@@ -16,17 +17,22 @@ namespace cdb {
 
 struct CpuPieces {
   std::array<ScreenTriangle, kChunkTriangles> triangles;
+  TriangleExtents extents;  // the triangles' (chunkPieces)
   std::array<std::uint8_t, kChunkTriangles> offset;  // triangle i is the item's offset[i]-th
   std::array<ScreenQuad, 6> quads;
   std::size_t count = 0;
   bool areQuads = false;
+  bool hasExtents = false;  // `extents` made (chunk pieces)
+  [[nodiscard]] const TriangleExtents* extentsIfMade() const {
+    return hasExtents ? &extents : nullptr;
+  }
 };
 
 // The triangles of chunk item `item` (mesh triangles of a Range, entries of the recording's list
 // for a Listed command) that its command draws inside `window` (pixels of the frame, in a pass
 // whose coverage margin is `marginPx`): of a closed mesh drawn whole only the faces that decide it
 // (CpuCommand::winding), and none whose pixel box misses the window (nor any of a part whose
-// rectangle misses it: its CpuItemParts).
+// rectangle misses it: its CpuItemParts); with their extents (out.extents).
 void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuCommand& c,
                  const CpuItem& item, const PixelRect& window, double marginPx, CpuPieces& out);
 

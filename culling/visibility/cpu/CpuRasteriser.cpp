@@ -661,6 +661,46 @@ HWY_INLINE void boundsBatch(const Piece* pieces, std::size_t first, std::size_t 
   hn::StoreU(hn::DemoteTo(d8, hn::DemoteTo(di, hn::IfThenElseZero(ok, one))), d8, out.ok);
 }
 
+// The same from the triangles' extents (TriangleExtents), read in rows: minX is NaN where a
+// coordinate is not finite, which makes bx0 NaN and fails bx0 <= bx1 as `finite` does above.
+HWY_INLINE void boundsBatch(const TriangleExtents& e, std::size_t first, const RasterPass& pass,
+                            RasterRole role, BatchBounds& out) {
+  const DD dd;
+  const hn::Rebind<float, DD> df;
+  const hn::Rebind<std::int32_t, DD> di;
+  const auto minX = hn::Load(dd, e.minX + first), maxX = hn::Load(dd, e.maxX + first);
+  const auto minY = hn::Load(dd, e.minY + first), maxY = hn::Load(dd, e.maxY + first);
+  const auto kMin = hn::Load(dd, e.minK + first), kMax = hn::Load(dd, e.maxK + first);
+  const double m = pass.marginPx;
+  const auto one = hn::Set(dd, 1.0);
+  auto bx0 = hn::Sub(hn::Ceil(hn::Add(minX, hn::Set(dd, -m))), one);
+  auto by0 = hn::Sub(hn::Ceil(hn::Add(minY, hn::Set(dd, -m))), one);
+  auto bx1 = hn::Floor(hn::Add(maxX, hn::Set(dd, m)));
+  auto by1 = hn::Floor(hn::Add(maxY, hn::Set(dd, m)));
+  const auto last = hn::Set(dd, static_cast<double>(pass.resolution - 1));
+  bx0 = greaterOf(bx0, hn::Zero(dd)), by0 = greaterOf(by0, hn::Zero(dd));
+  bx1 = lesserOf(bx1, last), by1 = lesserOf(by1, last);
+  const auto ok = hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1));
+  hn::StoreU(hn::DemoteTo(di, bx0), di, out.x0);
+  hn::StoreU(hn::DemoteTo(di, by0), di, out.y0);
+  hn::StoreU(hn::DemoteTo(di, bx1), di, out.x1);
+  hn::StoreU(hn::DemoteTo(di, by1), di, out.y1);
+  const bool test = role == RasterRole::Test;
+  const auto shift = hn::Set(dd, test ? pass.depthEpsilon : -pass.depthEpsilon);
+  const auto keyLo = hn::Set(df, pass.keyLo), keyHi = hn::Set(df, pass.keyHi);
+  if (test) {
+    hn::StoreU(clampLanes(roundUpLanes(hn::Add(kMin, shift)), keyLo, keyHi), df, out.zLo);
+    hn::StoreU(clampLanes(roundUpLanes(hn::Add(kMax, shift)), keyLo, keyHi), df, out.zHi);
+  } else {  // roundDown(v) = -roundUp(-v)
+    hn::StoreU(clampLanes(hn::Neg(roundUpLanes(hn::Neg(hn::Add(kMin, shift)))), keyLo, keyHi), df,
+               out.zLo);
+    hn::StoreU(clampLanes(hn::Neg(roundUpLanes(hn::Neg(hn::Add(kMax, shift)))), keyLo, keyHi), df,
+               out.zHi);
+  }
+  const hn::Rebind<std::uint8_t, DD> d8;
+  hn::StoreU(hn::DemoteTo(d8, hn::DemoteTo(di, hn::IfThenElseZero(ok, one))), d8, out.ok);
+}
+
 // setupBounds of pieces[0 .. count) one after another, set up a batch of lanes at a time for the
 // triangles of a chunk in a conservative pass: next(i, r) sets up piece i (in order, each once)
 // into r. (A box's few faces, and a few triangles, are set up one by one: a batch's gathers cost
@@ -668,15 +708,24 @@ HWY_INLINE void boundsBatch(const Piece* pieces, std::size_t first, std::size_t 
 template <class Piece>
 class BoundsInBatches {
  public:
-  BoundsInBatches(const Piece* pieces, std::size_t count, const RasterPass& pass, RasterRole role)
-      : pieces_(pieces), count_(count), pass_(pass), role_(role),
-        batched_(pass.conservative && Piece::kVertices == 3 && count >= kLeastBatched) {}
+  // With `extents` (triangles only), batches read them instead of the corners, at any count.
+  BoundsInBatches(const Piece* pieces, std::size_t count, const RasterPass& pass, RasterRole role,
+                  const TriangleExtents* extents = nullptr)
+      : pieces_(pieces), count_(count), pass_(pass), role_(role), extents_(extents),
+        batched_(pass.conservative && Piece::kVertices == 3 &&
+                 (count >= kLeastBatched || extents != nullptr)) {}
   HWY_INLINE bool next(std::size_t i, TriangleRaster& r) {
     if (!batched_) return setupBounds(pieces_[i], pass_, role_, r);
     if (i >= end_) {
-      begin_ = i;
-      end_ = std::min(count_, i + hn::Lanes(DD()));
-      boundsBatch(pieces_, i, count_, pass_, role_, batch_);
+      // (Extents are read in aligned rows: a batch starts at a multiple of the lane count, and
+      // the rows are padded to a multiple of 8.)
+      const std::size_t lanes = hn::Lanes(DD());
+      begin_ = extents_ != nullptr ? i - i % lanes : i;
+      end_ = std::min(count_, begin_ + lanes);
+      if (extents_ != nullptr)
+        boundsBatch(*extents_, begin_, pass_, role_, batch_);
+      else
+        boundsBatch(pieces_, i, count_, pass_, role_, batch_);
     }
     const std::size_t at = i - begin_;
     r.x0 = batch_.x0[at], r.y0 = batch_.y0[at], r.x1 = batch_.x1[at], r.y1 = batch_.y1[at];
@@ -689,6 +738,7 @@ class BoundsInBatches {
   std::size_t count_;
   const RasterPass& pass_;
   RasterRole role_;
+  const TriangleExtents* extents_;
   static constexpr std::size_t kLeastBatched = 8;
   bool batched_;
   std::size_t begin_ = 0, end_ = 0;
@@ -698,9 +748,10 @@ class BoundsInBatches {
 // Pieces prepared to be written later, block by block: those with a pixel in the window.
 template <class Piece>
 std::size_t prepare(const CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
-                    std::size_t count, PreparedWrite<Piece>* out) {
+                    std::size_t count, PreparedWrite<Piece>* out,
+                    const TriangleExtents* extents = nullptr) {
   std::size_t n = 0;
-  BoundsInBatches<Piece> bounds(pieces, count, pass, RasterRole::Write);
+  BoundsInBatches<Piece> bounds(pieces, count, pass, RasterRole::Write, extents);
   for (std::size_t i = 0; i < count; ++i) {
     PreparedWrite<Piece>& w = out[n];
     if (!bounds.next(i, w.raster)) continue;
@@ -725,8 +776,8 @@ std::size_t prepare(const CpuDepthBuffer& buffer, const RasterPass& pass, const 
 }
 std::size_t PrepareTriangles(const CpuDepthBuffer& buffer, const RasterPass& pass,
                              const ScreenTriangle* triangles, std::size_t count,
-                             PreparedWrite<ScreenTriangle>* out) {
-  return prepare(buffer, pass, triangles, count, out);
+                             PreparedWrite<ScreenTriangle>* out, const TriangleExtents* extents) {
+  return prepare(buffer, pass, triangles, count, out, extents);
 }
 std::size_t PrepareQuads(const CpuDepthBuffer& buffer, const RasterPass& pass,
                          const ScreenQuad* quads, std::size_t count,
@@ -755,8 +806,9 @@ void writePreparedPieces(CpuDepthBuffer& buffer, const RasterPass& pass,
 template <bool kOthers, class Piece>
 std::size_t testUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass, const Piece* pieces,
                               std::size_t count, const Writer& writer, RasterWork& work,
-                              PendingBlocks* pending, std::uint8_t* each) {
-  BoundsInBatches<Piece> bounds(pieces, count, pass, RasterRole::Test);
+                              PendingBlocks* pending, std::uint8_t* each,
+                              const TriangleExtents* extents = nullptr) {
+  BoundsInBatches<Piece> bounds(pieces, count, pass, RasterRole::Test, extents);
   if (each != nullptr || pending == nullptr) {
     // (Every field a piece's drawing reads is set by its own set-up first: one for all of them.)
     TriangleRaster r;
@@ -807,9 +859,9 @@ void WritePreparedQuads(CpuDepthBuffer& buffer, const RasterPass& pass,
 std::size_t TestUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                               const ScreenTriangle* triangles, std::size_t count,
                               std::uint32_t object, RasterWork& work, PendingBlocks* pending,
-                              std::uint8_t* each) {
+                              std::uint8_t* each, const TriangleExtents* extents) {
   return CDB_WITH_OTHERS(testUntilOccluded, buffer, pass, triangles, count, writerOf(object), work,
-                         pending, each);
+                         pending, each, extents);
 }
 std::size_t TestQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                    const ScreenQuad* quads, std::size_t count, std::uint32_t object,
@@ -847,17 +899,20 @@ void checkTestSize(std::size_t pieces) {
 
 std::size_t testTrianglesUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                        std::span<const ScreenTriangle> triangles, RasterWork& work,
-                                       std::uint32_t object, PendingBlocks* pending) {
+                                       std::uint32_t object, PendingBlocks* pending,
+                                       const TriangleExtents* extents) {
   checkTestSize(triangles.size());
   return HWY_DYNAMIC_DISPATCH(TestUntilOccluded)(buffer, pass, triangles.data(), triangles.size(),
-                                                 object, work, pending, nullptr);
+                                                 object, work, pending, nullptr, extents);
 }
 
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
-                      RasterWork& work, std::uint32_t object, PendingBlocks* pending) {
+                      RasterWork& work, std::uint32_t object, PendingBlocks* pending,
+                      const TriangleExtents* extents) {
+  if (extents != nullptr) checkTestSize(triangles.size());
   (void)HWY_DYNAMIC_DISPATCH(TestUntilOccluded)(buffer, pass, triangles.data(), triangles.size(),
-                                                object, work, pending, fullyVisible);
+                                                object, work, pending, fullyVisible, extents);
 }
 
 std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
@@ -870,9 +925,10 @@ std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pas
 
 std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
                           std::span<const ScreenTriangle> triangles,
-                          PreparedWrite<ScreenTriangle>* out) {
+                          PreparedWrite<ScreenTriangle>* out, const TriangleExtents* extents) {
+  if (extents != nullptr) checkTestSize(triangles.size());
   return HWY_DYNAMIC_DISPATCH(PrepareTriangles)(buffer, pass, triangles.data(), triangles.size(),
-                                                out);
+                                                out, extents);
 }
 
 std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,

@@ -55,17 +55,35 @@ struct PendingBlocks {
 // piece is fully visible. With `pending`, every triangle against what the buffer holds first and,
 // all visible there, every one again in the blocks of pending->read.
 inline constexpr std::size_t kMostTestPieces = 64;
+
+// The extent of each of up to kMostTestPieces triangles, made where they are gathered (CpuPieces):
+// triangle i's smallest and largest x, y and key (std::min and std::max over its corners in
+// order), with minX[i] NaN when one of its nine coordinates is not finite. The set-up's first step
+// reads them a row of lanes at a time instead of gathering the corners again; entries past the
+// last triangle up to a multiple of 8 repeat it.
+struct TriangleExtents {
+  alignas(64) double minX[kMostTestPieces], maxX[kMostTestPieces];
+  alignas(64) double minY[kMostTestPieces], maxY[kMostTestPieces];
+  alignas(64) double minK[kMostTestPieces], maxK[kMostTestPieces];
+  // Entry i of each row = entry `last` (the rows read in lanes of up to 8).
+  void padFrom(std::size_t last, std::size_t end) {
+    for (std::size_t i = last + 1; i < end; ++i)
+      minX[i] = minX[last], maxX[i] = maxX[last], minY[i] = minY[last], maxY[i] = maxY[last],
+      minK[i] = minK[last], maxK[i] = maxK[last];
+  }
+};
+
 [[nodiscard]] std::size_t testTrianglesUntilOccluded(
     CpuDepthBuffer& buffer, const RasterPass& pass, std::span<const ScreenTriangle> triangles,
     RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject,
-    PendingBlocks* pending = nullptr);
+    PendingBlocks* pending = nullptr, const TriangleExtents* extents = nullptr);
 // Tests each triangle as its own piece: fullyVisible[i] = 0 where triangle i has an occluded
 // sample; triangles whose entry is already 0 are not tested. With `pending`, each is tested
 // against what the buffer holds first and, visible there, in the blocks of pending->read.
 void testEachTriangle(CpuDepthBuffer& buffer, const RasterPass& pass,
                       std::span<const ScreenTriangle> triangles, std::uint8_t* fullyVisible,
                       RasterWork& work, std::uint32_t object = CpuDepthBuffer::kNoObject,
-                      PendingBlocks* pending = nullptr);
+                      PendingBlocks* pending = nullptr, const TriangleExtents* extents = nullptr);
 // The same for quads (ScreenQuad; conservative passes only), each set up and visited as one piece.
 [[nodiscard]] std::size_t testQuadsUntilOccluded(CpuDepthBuffer& buffer, const RasterPass& pass,
                                                  std::span<const ScreenQuad> quads,
@@ -84,9 +102,11 @@ struct PreparedWrite {
   Piece piece;
 };
 // The pieces with a pixel in the buffer's window, prepared, into out[0 ..]; returns how many.
+// (`extents`: the triangles', at most kMostTestPieces of them.)
 std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
                           std::span<const ScreenTriangle> triangles,
-                          PreparedWrite<ScreenTriangle>* out);
+                          PreparedWrite<ScreenTriangle>* out,
+                          const TriangleExtents* extents = nullptr);
 std::size_t prepareWrites(const CpuDepthBuffer& buffer, const RasterPass& pass,
                           std::span<const ScreenQuad> quads, PreparedWrite<ScreenQuad>* out);
 // Writes prepared pieces into the blocks of `mask` only: drawn block by block in any order and

@@ -1,5 +1,6 @@
 #include "culling/visibility/cpu/CpuScreenVertices.h"
 
+#include <cmath>
 #include <cstring>
 #include <unordered_map>
 
@@ -59,6 +60,7 @@ void CpuScreenVertices::assign(CpuRecording& recording, std::span<const CpuMeshB
   if (stateCapacity_ < chunks) {
     states_ = std::make_unique<std::atomic<std::uint8_t>[]>(chunks);
     partStates_ = std::make_unique<std::atomic<std::uint8_t>[]>(chunks);
+    finite_ = std::make_unique<std::uint8_t[]>(chunks);
     stateCapacity_ = chunks;
   }
   for (std::size_t i = 0; i < chunks; ++i) {
@@ -68,7 +70,7 @@ void CpuScreenVertices::assign(CpuRecording& recording, std::span<const CpuMeshB
 }
 
 const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const CpuMeshBounds& bounds,
-                                                std::uint32_t chunk) const {
+                                                std::uint32_t chunk, bool& finite) const {
   const Set& set = sets_[c.vertexSet];
   CpuScreenVertex* out = positions_.data() + set.firstVertex + bounds.chunkVertexStart[chunk];
   std::atomic<std::uint8_t>& state = states_[set.firstChunk + chunk];
@@ -79,10 +81,13 @@ const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const CpuMe
       const std::uint32_t begin = bounds.chunkVertexStart[chunk];
       const std::uint32_t end = bounds.chunkVertexStart[chunk + 1];
       const Eigen::Vector3f* from = bounds.chunkPositions.data();
+      bool allFinite = true;
       for (std::uint32_t i = begin; i < end; ++i) {
         const ScreenPoint p = screenPoint(c.toScreen, from[i].x(), from[i].y(), from[i].z());
         out[i - begin] = {p.x, p.y, p.k};
+        allFinite = allFinite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.k);
       }
+      finite_[set.firstChunk + chunk] = allFinite;
       state.store(kMade, std::memory_order_release);
       state.notify_all();
       break;
@@ -92,6 +97,7 @@ const CpuScreenVertex* CpuScreenVertices::chunk(const CpuCommand& c, const CpuMe
         state.wait(now, std::memory_order_acquire);
       break;
   }
+  finite = finite_[set.firstChunk + chunk] != 0;
   return out;
 }
 

@@ -43,9 +43,9 @@ class CpuScreenVertices {
   // and makes room for them; none is transformed or bounded yet.
   void assign(CpuRecording& recording, std::span<const CpuMeshBounds> bounds);
   // The vertices of chunk `chunk` of command `c`'s mesh (chunkVertices' order), transformed
-  // (read from bounds.chunkPositions).
+  // (read from bounds.chunkPositions); `finite` says whether all their coordinates are.
   [[nodiscard]] const CpuScreenVertex* chunk(const CpuCommand& c, const CpuMeshBounds& bounds,
-                                             std::uint32_t chunk) const;
+                                             std::uint32_t chunk, bool& finite) const;
   // The screen bounds of the mesh parts of chunk `chunk` of command `c`'s mesh (its
   // kChunkParts parts, fewer in the mesh's last chunk), made by make(firstPart, count, out) the
   // first time any thread asks. A thread that finds them being made by another makes the same
@@ -94,6 +94,9 @@ class CpuScreenVertices {
   mutable GrowOnlyArray<CpuPartScreenBounds> parts_;
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> states_;
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> partStates_;
+  // Per chunk, once made: whether every coordinate of its vertices is finite (written before its
+  // state says made).
+  mutable std::unique_ptr<std::uint8_t[]> finite_;
   std::size_t stateCapacity_ = 0;
 };
 

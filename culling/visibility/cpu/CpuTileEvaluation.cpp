@@ -90,7 +90,8 @@ void drawPrepared(CpuPreparedPieces<Piece>& prepared, CpuDepthBuffer& depth,
     if constexpr (std::is_same_v<Piece, ScreenQuad>)
       n = prepareWrites(depth, raster, {pieces.quads.data(), pieces.count}, room);
     else
-      n = prepareWrites(depth, raster, {pieces.triangles.data(), pieces.count}, room);
+      n = prepareWrites(depth, raster, {pieces.triangles.data(), pieces.count}, room,
+                        pieces.extentsIfMade());
     p.firstPrepared = first;
     p.preparedCount = static_cast<std::uint32_t>(n);
     prepared.add(first, n);
@@ -227,7 +228,7 @@ void testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass
     for (std::size_t i = 0; i < pieces.count; ++i)
       visible[i] = !earlyOut || answers.visible(item.answer + pieces.offset[i]);
     testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster,
-                     object, pending);
+                     object, pending, pieces.extentsIfMade());
     for (std::size_t i = 0; i < pieces.count; ++i)
       if (!visible[i]) answers.occlude(item.answer + pieces.offset[i]);
     return;
@@ -237,7 +238,8 @@ void testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass
           ? testQuadsUntilOccluded(depth, raster, {pieces.quads.data(), pieces.count}, work.raster,
                                    object, pending) < pieces.count
           : testTrianglesUntilOccluded(depth, raster, {pieces.triangles.data(), pieces.count},
-                                       work.raster, object, pending) < pieces.count;
+                                       work.raster, object, pending,
+                                       pieces.extentsIfMade()) < pieces.count;
   if (occluded) answers.occlude(item.answer);
 }
 
