@@ -80,10 +80,11 @@ std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend, const S
   trianglePassAnswers(backend, scene, ordered, passes, answers);
   std::vector<SetMember> kept;
   std::size_t piece = 0;
-  for (const auto& m : ordered) {
-    keepTriangles(
-        scene, m, piece, [&](std::size_t i) { return !answers.inBoth(i); }, kept);
-    piece += memberTriangleCount(scene, m);
+  const auto notInBoth = [&](std::size_t i) { return !answers.inBoth(i); };
+  for (auto& m : ordered) {
+    const std::size_t count = memberTriangleCount(scene, m);
+    keepTriangles(scene, std::move(m), piece, notInBoth, kept);
+    piece += count;
   }
   return kept;
 }

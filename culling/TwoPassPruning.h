@@ -81,25 +81,32 @@ void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
 // How many triangles a member has: its list's, or its mesh's when it has every triangle.
 [[nodiscard]] std::size_t memberTriangleCount(const SceneGeometry& scene, const SetMember& m);
 
-// Appends to `kept` member `m` with the triangles whose piece `keep` accepts (pieces first,
-// first + 1, ..., one per triangle as memberTriangleCount counts them): nothing when it keeps
-// none, no list when a member of every triangle keeps them all.
+// Appends to `kept` member `m` (consumed) with the triangles whose piece `keep` accepts (pieces
+// first, first + 1, ..., one per triangle as memberTriangleCount counts them): nothing when it
+// keeps none, no list when a member of every triangle keeps them all. A list is narrowed in place
+// (the triangle level's lists keep their memory from axis to axis).
 template <class Keep>
-void keepTriangles(const SceneGeometry& scene, const SetMember& m, std::size_t first, Keep&& keep,
+void keepTriangles(const SceneGeometry& scene, SetMember&& m, std::size_t first, Keep&& keep,
                    std::vector<SetMember>& kept) {
-  SetMember out{m.object, {}};
   if (m.allTriangles()) {
     const auto n = static_cast<std::uint32_t>(scene.meshOf(m.object).triangleCount());
-    for (std::uint32_t t = 0; t < n; ++t)
-      if (keep(first + t)) out.triangles.push_back(t);
-    if (out.triangles.empty()) return;
-    if (out.triangles.size() == n) out.triangles.clear();  // all of them: no list
-    kept.push_back(std::move(out));
+    std::uint32_t count = 0;
+    for (std::uint32_t t = 0; t < n; ++t) count += keep(first + t) ? 1u : 0u;
+    if (count == 0) return;
+    if (count < n) {  // (all of them: no list)
+      m.triangles.reserve(count);
+      for (std::uint32_t t = 0; t < n; ++t)
+        if (keep(first + t)) m.triangles.push_back(t);
+    }
+    kept.push_back(std::move(m));
     return;
   }
+  std::size_t out = 0;
   for (std::size_t k = 0; k < m.triangles.size(); ++k)
-    if (keep(first + k)) out.triangles.push_back(m.triangles[k]);
-  if (!out.triangles.empty()) kept.push_back(std::move(out));
+    if (keep(first + k)) m.triangles[out++] = m.triangles[k];
+  if (out == 0) return;
+  m.triangles.resize(out);
+  kept.push_back(std::move(m));
 }
 
 // CULLIDE's two levels along its three axes: every object pruned along each axis in turn

@@ -65,10 +65,11 @@ void OrderIndependentCullide::pruneTriangles(std::vector<SetMember>& members,
   backend_->fetchResults(visible_);
   std::vector<SetMember> kept;
   std::size_t piece = 0;
-  for (const auto& m : members) {
-    keepTriangles(
-        *scene_, m, piece, [&](std::size_t i) { return !visible_[i]; }, kept);
-    piece += memberTriangleCount(*scene_, m);
+  const auto occluded = [&](std::size_t i) { return !visible_[i]; };
+  for (auto& m : members) {
+    const std::size_t count = memberTriangleCount(*scene_, m);
+    keepTriangles(*scene_, std::move(m), piece, occluded, kept);
+    piece += count;
   }
   members = std::move(kept);
 }

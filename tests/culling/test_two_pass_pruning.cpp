@@ -55,6 +55,12 @@ TEST(TwoPassPruning, KeepTrianglesByTheirAnswers) {
   keepTriangles(scene, SetMember{1, {0, 1, 2, 3}}, 0, all, kept);
   ASSERT_EQ(kept.size(), 2u);
   EXPECT_EQ(kept[1].triangles.size(), 4u) << "a listed member keeps its list";
+  SetMember listed{1, {0, 1, 2, 3}};
+  const std::uint32_t* storage = listed.triangles.data();
+  keepTriangles(scene, std::move(listed), 0, keep, kept);
+  ASSERT_EQ(kept.size(), 3u);
+  EXPECT_EQ(kept[2].triangles, (std::vector<std::uint32_t>{1, 3}));
+  EXPECT_EQ(kept[2].triangles.data(), storage) << "narrowed in place";
 }
 
 }  // namespace
