@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <iterator>
+#include <numeric>
 
 namespace cdb {
 
@@ -61,12 +62,10 @@ std::vector<SetMember> QuickCullide::drawnTriangles() const {
   for (std::size_t i = 0; i < members_.size(); ++i) {
     const Member& m = members_[i];
     drawn[i].object = m.object;
-    const auto count = static_cast<std::uint32_t>(scene_->meshOf(m.object).triangleCount());
     const Side* sides[2] = {isEarlier_[i] ? &m.towardLater : nullptr, isLater_[i] ? &m.towardEarlier : nullptr};
     auto& out = drawn[i].triangles;
     if ((sides[0] && sides[0]->all) || (sides[1] && sides[1]->all)) {
-      out.resize(count);
-      for (std::uint32_t t = 0; t < count; ++t) out[t] = t;
+      // every triangle: no list
     } else if (sides[0] && sides[1]) {
       std::set_union(sides[0]->triangles.begin(), sides[0]->triangles.end(), sides[1]->triangles.begin(),
                      sides[1]->triangles.end(), std::back_inserter(out));
@@ -129,10 +128,12 @@ void QuickCullide::classifyTriangles(const Eigen::Vector3d& axis) {
   };
   for (std::size_t i = 0; i < members_.size(); ++i) {
     flags.assign(scene_->meshOf(members_[i].object).triangleCount(), 0);
-    for (std::uint32_t t : drawn[i].triangles) {
+    const SetMember& d = drawn[i];
+    const std::size_t count = memberTriangleCount(*scene_, d);
+    for (std::size_t k = 0; k < count; ++k, ++piece) {
+      const std::uint32_t t = d.allTriangles() ? static_cast<std::uint32_t>(k) : d.triangles[k];
       flags[t] = static_cast<std::uint8_t>((answers_.first[piece] ? kVisibleFirst : 0) |
                                            (answers_.second[piece] ? kVisibleSecond : 0));
-      ++piece;
     }
     if (isEarlier_[i]) narrow(members_[i].towardLater, kVisibleSecond);
     if (isLater_[i]) narrow(members_[i].towardEarlier, kVisibleFirst);
@@ -151,18 +152,23 @@ CullingResult QuickCullide::result(const VisibilityCounters& work) const {
   // Per member, its side's triangles as positions in its own list (empty: all of them).
   std::vector<std::vector<std::uint32_t>> laterPositions(members_.size()), earlierPositions(members_.size());
   std::vector<std::uint32_t> positionIn;
-  const auto positions = [&](const Side& side, const SetMember& m, std::vector<std::uint32_t>& list) {
-    if (side.all || side.triangles.size() == m.triangles.size()) return;  // every triangle of the member
+  const auto positions = [&](const Side& side, std::size_t drawnCount,
+                             std::vector<std::uint32_t>& list) {
+    if (side.all || side.triangles.size() == drawnCount) return;  // every triangle of the member
     list.reserve(side.triangles.size());
     for (std::uint32_t t : side.triangles) list.push_back(positionIn[t]);
   };
   for (std::size_t i = 0; i < members_.size(); ++i) {
     SetMember m = drawn[i];
-    out.counters.pcsTriangles += m.triangles.size();
+    const std::size_t drawnCount = memberTriangleCount(*scene_, m);
+    out.counters.pcsTriangles += drawnCount;
     positionIn.assign(scene_->meshOf(m.object).triangleCount(), 0);
-    for (std::uint32_t k = 0; k < m.triangles.size(); ++k) positionIn[m.triangles[k]] = k;
-    if (isEarlier_[i]) positions(members_[i].towardLater, m, laterPositions[i]);
-    if (isLater_[i]) positions(members_[i].towardEarlier, m, earlierPositions[i]);
+    if (m.allTriangles())
+      std::iota(positionIn.begin(), positionIn.end(), 0u);
+    else
+      for (std::uint32_t k = 0; k < m.triangles.size(); ++k) positionIn[m.triangles[k]] = k;
+    if (isEarlier_[i]) positions(members_[i].towardLater, drawnCount, laterPositions[i]);
+    if (isLater_[i]) positions(members_[i].towardEarlier, drawnCount, earlierPositions[i]);
     if (m.triangles.size() == positionIn.size()) m.triangles.clear();
     set.members.push_back(std::move(m));
   }

@@ -43,7 +43,8 @@ class QuickCullide final : public CullingStrategy {
   void classifyTriangles(const Eigen::Vector3d& axis);
   // Drops the pairs with an empty side, then the members left in no pair.
   void dropEmptyPairsAndMembers();
-  // Each member's triangles to draw: the sides it has in its pairs (explicit lists).
+  // Each member's triangles to draw: the sides it has in its pairs (no list where a side has
+  // every triangle).
   [[nodiscard]] std::vector<SetMember> drawnTriangles() const;
   [[nodiscard]] CullingResult result(const VisibilityCounters& work) const;
 
