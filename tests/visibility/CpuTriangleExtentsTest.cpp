@@ -1,6 +1,7 @@
 // Triangles set up from their extents (TriangleExtents, made where chunks are gathered) answer and
 // prepare exactly as set up from their corners: random batches of small and large triangles, some
-// with a coordinate that is not finite, tested each and prepared against random stored depths.
+// with a coordinate that is not finite, tested each and prepared against random stored depths; and
+// as each triangle tested alone, with pending writes resolved on the way.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -104,6 +105,85 @@ TEST(CpuTriangleExtents, SetUpAsFromTheCorners) {
       EXPECT_EQ(std::memcmp(&r.zHi, &s.zHi, sizeof r.zHi), 0);
       EXPECT_EQ(p[i].blocks, q[i].blocks);
     }
+  }
+}
+
+// Pending writes for a test to resolve: a block's pending write is a square over the block at a
+// depth of its own, drawn the first time a test resolves the block.
+struct PendingSquares {
+  CpuDepthBuffer* buffer = nullptr;
+  RasterPass pass;
+  std::vector<float> depthOf;  // per block of the window
+  std::vector<bool> drawn;
+  static bool resolve(void* context, std::size_t block, float /*zHi*/) {
+    auto& p = *static_cast<PendingSquares*>(context);
+    if (p.drawn[block]) return false;
+    p.drawn[block] = true;
+    const int nx = p.buffer->blockX1() - p.buffer->blockX0() + 1;
+    const double x = (p.buffer->blockX0() + static_cast<int>(block) % nx) * 8.0 + 4.0;
+    const double y = (p.buffer->blockY0() + static_cast<int>(block) / nx) * 8.0 + 4.0;
+    const double k = p.depthOf[block];
+    const ScreenTriangle t{{x - 3, x + 3, x}, {y - 2, y - 2, y + 3}, {k, k, k}};
+    RasterWork work;
+    writePieces(*p.buffer, p.pass, std::span<const ScreenTriangle>(&t, 1), work);
+    return false;
+  }
+};
+
+// Tests answering each triangle, set up from extents a batch of lanes at a time: every answer, the
+// pixels tested and the pending writes drawn are those of each triangle tested alone (set up on
+// its own), in order, with and without pending writes, in a window that is part of the frame.
+TEST(CpuTriangleExtents, BatchesAnswerAsEachTriangleAlone) {
+  std::mt19937 rng(4646);
+  for (int round = 0; round < 300; ++round) {
+    const int resolution = 128;
+    CpuDepthBuffer buffer;
+    buffer.place(resolution, 2 + round % 3, 1, 8, 4 + round % 5);  // at most 64 blocks
+    fillRandomly(buffer, resolution, rng);
+    RasterPass pass;
+    pass.resolution = resolution;
+    pass.marginPx = 1e-6;
+    pass.depthEpsilon = 1e-6;
+    if (round % 4 == 3) {  // a reversed pass: keys are stored values negated
+      pass.sign = -1.f, pass.keyLo = -1.f, pass.keyHi = 0.f;
+      buffer.clear(1.f);
+    }
+    const std::size_t n = 1 + rng() % kMostTestPieces;
+    std::vector<ScreenTriangle> triangles = randomTriangles(rng, resolution, n);
+    for (std::size_t i = 3; i < n; i += 5)  // at the far end, where cleared blocks tie with them
+      for (double& k : triangles[i].k) k = 1.0;
+    if (pass.sign < 0)
+      for (ScreenTriangle& t : triangles)
+        for (double& k : t.k) k -= 1.0;
+    const TriangleExtents extents = extentsOf(triangles);
+    const bool withPending = round % 2 == 1;
+    PendingSquares squares;
+    squares.pass = pass;
+    std::uniform_real_distribution<float> depth(0.f, 1.f);
+    for (std::size_t b = 0; b < buffer.blocks(); ++b) squares.depthOf.push_back(depth(rng));
+    const BlockMask reading =
+        withPending ? (BlockMask{rng()} << 32 | rng()) & ((BlockMask{1} << buffer.blocks()) - 1)
+                    : 0;
+
+    CpuDepthBuffer alone = buffer;
+    std::vector<std::uint8_t> batched(n, 1), oneByOne(n, 1);
+    for (std::size_t i = 0; i < n; i += 7) batched[i] = oneByOne[i] = 0;  // not asked
+    RasterWork a, b;
+    squares.buffer = &buffer;
+    squares.drawn.assign(buffer.blocks(), false);
+    PendingBlocks pending{reading, reading, &PendingSquares::resolve, &squares};
+    testEachTriangle(buffer, pass, triangles, batched.data(), a, CpuDepthBuffer::kNoObject,
+                     withPending ? &pending : nullptr, &extents);
+    PendingSquares squaresAlone = squares;
+    squaresAlone.buffer = &alone;
+    squaresAlone.drawn.assign(alone.blocks(), false);
+    PendingBlocks pendingAlone{reading, reading, &PendingSquares::resolve, &squaresAlone};
+    for (std::size_t i = 0; i < n; ++i)
+      testEachTriangle(alone, pass, std::span<const ScreenTriangle>(&triangles[i], 1), &oneByOne[i],
+                       b, CpuDepthBuffer::kNoObject, withPending ? &pendingAlone : nullptr);
+    ASSERT_EQ(batched, oneByOne) << "round " << round;
+    EXPECT_EQ(a.pixelsTested, b.pixelsTested) << "round " << round;
+    EXPECT_EQ(squares.drawn, squaresAlone.drawn) << "round " << round;
   }
 }
 
