@@ -107,7 +107,8 @@ void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuComman
       const double maxY = std::max({s.y[0], s.y[1], s.y[2]});
       if (maxX < wx0 || minX > wx1 || maxY < wy0 || minY > wy1) continue;
       if (!drawnForRole(s, c.winding, c.role)) continue;
-      e.minX[kept] = finite || raster_detail::allFinite(s) ? minX : std::numeric_limits<double>::quiet_NaN();
+      constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+      e.minX[kept] = finite || raster_detail::allFinite(s) ? minX : kNaN;
       e.maxX[kept] = maxX, e.minY[kept] = minY, e.maxY[kept] = maxY;
       e.minK[kept] = std::min({s.k[0], s.k[1], s.k[2]});
       e.maxK[kept] = std::max({s.k[0], s.k[1], s.k[2]});
