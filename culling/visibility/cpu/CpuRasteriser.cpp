@@ -602,35 +602,16 @@ template <class V>
 HWY_INLINE V clampLanes(V v, V lo, V hi) {  // std::clamp(v, lo, hi)
   return hn::IfThenElse(hn::Lt(v, lo), lo, hn::IfThenElse(hn::Lt(hi, v), hi, v));
 }
-// Pieces [first, first + lanes) of `pieces` (`count` in all; lanes past the last repeat it).
-template <class Piece>
-HWY_INLINE void boundsBatch(const Piece* pieces, std::size_t first, std::size_t count,
-                            const RasterPass& pass, RasterRole role, BatchBounds& out) {
+// The boxes and key bounds of a batch from its pieces' extents (smallest and largest x, y and key
+// per lane; `finite`: the lanes whose coordinates all are).
+template <class Mask>
+HWY_INLINE void boundsFromExtents(hn::Vec<DD> minX, hn::Vec<DD> maxX, hn::Vec<DD> minY,
+                                  hn::Vec<DD> maxY, hn::Vec<DD> kMin, hn::Vec<DD> kMax,
+                                  Mask finite, const RasterPass& pass, RasterRole role,
+                                  BatchBounds& out) {
   const DD dd;
   const hn::Rebind<float, DD> df;
   const hn::Rebind<std::int32_t, DD> di;
-  const hn::RebindToSigned<DD> di64;
-  constexpr std::int64_t kStride = sizeof(Piece) / sizeof(double);
-  static_assert(sizeof(Piece) == 3 * Piece::kVertices * sizeof(double));
-  const auto lane = hn::Iota(di64, 0);
-  const auto lastLane = hn::Set(di64, static_cast<std::int64_t>(count - 1 - first));
-  const auto index = hn::Mul(hn::Min(lane, lastLane), hn::Set(di64, kStride));
-  const double* base = &pieces[first].x[0];
-  hn::Vec<DD> minX, maxX, minY, maxY, kMin, kMax;
-  auto finite = hn::Eq(hn::Zero(dd), hn::Zero(dd));
-  for (int v = 0; v < Piece::kVertices; ++v) {
-    const auto x = hn::GatherIndex(dd, base + v, index);
-    const auto y = hn::GatherIndex(dd, base + Piece::kVertices + v, index);
-    const auto k = hn::GatherIndex(dd, base + 2 * Piece::kVertices + v, index);
-    finite = hn::And(finite, hn::And(hn::IsFinite(x), hn::And(hn::IsFinite(y), hn::IsFinite(k))));
-    if (v == 0) {
-      minX = maxX = x, minY = maxY = y, kMin = kMax = k;
-    } else {
-      minX = lesserOf(minX, x), maxX = greaterOf(maxX, x);
-      minY = lesserOf(minY, y), maxY = greaterOf(maxY, y);
-      kMin = lesserOf(kMin, k), kMax = greaterOf(kMax, k);
-    }
-  }
   const double m = pass.marginPx;
   const auto one = hn::Set(dd, 1.0);
   auto bx0 = hn::Sub(hn::Ceil(hn::Add(minX, hn::Set(dd, -m))), one);
@@ -661,44 +642,47 @@ HWY_INLINE void boundsBatch(const Piece* pieces, std::size_t first, std::size_t 
   hn::StoreU(hn::DemoteTo(d8, hn::DemoteTo(di, hn::IfThenElseZero(ok, one))), d8, out.ok);
 }
 
+// Pieces [first, first + lanes) of `pieces` (`count` in all; lanes past the last repeat it), their
+// corners gathered.
+template <class Piece>
+HWY_INLINE void boundsBatch(const Piece* pieces, std::size_t first, std::size_t count,
+                            const RasterPass& pass, RasterRole role, BatchBounds& out) {
+  const DD dd;
+  const hn::RebindToSigned<DD> di64;
+  constexpr std::int64_t kStride = sizeof(Piece) / sizeof(double);
+  static_assert(sizeof(Piece) == 3 * Piece::kVertices * sizeof(double));
+  const auto lane = hn::Iota(di64, 0);
+  const auto lastLane = hn::Set(di64, static_cast<std::int64_t>(count - 1 - first));
+  const auto index = hn::Mul(hn::Min(lane, lastLane), hn::Set(di64, kStride));
+  const double* base = &pieces[first].x[0];
+  hn::Vec<DD> minX, maxX, minY, maxY, kMin, kMax;
+  auto finite = hn::Eq(hn::Zero(dd), hn::Zero(dd));
+  for (int v = 0; v < Piece::kVertices; ++v) {
+    const auto x = hn::GatherIndex(dd, base + v, index);
+    const auto y = hn::GatherIndex(dd, base + Piece::kVertices + v, index);
+    const auto k = hn::GatherIndex(dd, base + 2 * Piece::kVertices + v, index);
+    finite = hn::And(finite, hn::And(hn::IsFinite(x), hn::And(hn::IsFinite(y), hn::IsFinite(k))));
+    if (v == 0) {
+      minX = maxX = x, minY = maxY = y, kMin = kMax = k;
+    } else {
+      minX = lesserOf(minX, x), maxX = greaterOf(maxX, x);
+      minY = lesserOf(minY, y), maxY = greaterOf(maxY, y);
+      kMin = lesserOf(kMin, k), kMax = greaterOf(kMax, k);
+    }
+  }
+  boundsFromExtents(minX, maxX, minY, maxY, kMin, kMax, finite, pass, role, out);
+}
+
 // The same from the triangles' extents (TriangleExtents), read in rows: minX is NaN where a
-// coordinate is not finite, which makes bx0 NaN and fails bx0 <= bx1 as `finite` does above.
+// coordinate is not finite.
 HWY_INLINE void boundsBatch(const TriangleExtents& e, std::size_t first, const RasterPass& pass,
                             RasterRole role, BatchBounds& out) {
   const DD dd;
-  const hn::Rebind<float, DD> df;
-  const hn::Rebind<std::int32_t, DD> di;
   const auto minX = hn::Load(dd, e.minX + first), maxX = hn::Load(dd, e.maxX + first);
   const auto minY = hn::Load(dd, e.minY + first), maxY = hn::Load(dd, e.maxY + first);
   const auto kMin = hn::Load(dd, e.minK + first), kMax = hn::Load(dd, e.maxK + first);
-  const double m = pass.marginPx;
-  const auto one = hn::Set(dd, 1.0);
-  auto bx0 = hn::Sub(hn::Ceil(hn::Add(minX, hn::Set(dd, -m))), one);
-  auto by0 = hn::Sub(hn::Ceil(hn::Add(minY, hn::Set(dd, -m))), one);
-  auto bx1 = hn::Floor(hn::Add(maxX, hn::Set(dd, m)));
-  auto by1 = hn::Floor(hn::Add(maxY, hn::Set(dd, m)));
-  const auto last = hn::Set(dd, static_cast<double>(pass.resolution - 1));
-  bx0 = greaterOf(bx0, hn::Zero(dd)), by0 = greaterOf(by0, hn::Zero(dd));
-  bx1 = lesserOf(bx1, last), by1 = lesserOf(by1, last);
-  const auto ok = hn::And(hn::Le(bx0, bx1), hn::Le(by0, by1));
-  hn::StoreU(hn::DemoteTo(di, bx0), di, out.x0);
-  hn::StoreU(hn::DemoteTo(di, by0), di, out.y0);
-  hn::StoreU(hn::DemoteTo(di, bx1), di, out.x1);
-  hn::StoreU(hn::DemoteTo(di, by1), di, out.y1);
-  const bool test = role == RasterRole::Test;
-  const auto shift = hn::Set(dd, test ? pass.depthEpsilon : -pass.depthEpsilon);
-  const auto keyLo = hn::Set(df, pass.keyLo), keyHi = hn::Set(df, pass.keyHi);
-  if (test) {
-    hn::StoreU(clampLanes(roundUpLanes(hn::Add(kMin, shift)), keyLo, keyHi), df, out.zLo);
-    hn::StoreU(clampLanes(roundUpLanes(hn::Add(kMax, shift)), keyLo, keyHi), df, out.zHi);
-  } else {  // roundDown(v) = -roundUp(-v)
-    hn::StoreU(clampLanes(hn::Neg(roundUpLanes(hn::Neg(hn::Add(kMin, shift)))), keyLo, keyHi), df,
-               out.zLo);
-    hn::StoreU(clampLanes(hn::Neg(roundUpLanes(hn::Neg(hn::Add(kMax, shift)))), keyLo, keyHi), df,
-               out.zHi);
-  }
-  const hn::Rebind<std::uint8_t, DD> d8;
-  hn::StoreU(hn::DemoteTo(d8, hn::DemoteTo(di, hn::IfThenElseZero(ok, one))), d8, out.ok);
+  boundsFromExtents(minX, maxX, minY, maxY, kMin, kMax, hn::Not(hn::IsNaN(minX)), pass, role,
+                    out);
 }
 
 // setupBounds of pieces[0 .. count) one after another, set up a batch of lanes at a time for the
