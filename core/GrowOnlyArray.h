@@ -31,21 +31,13 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/AddressSanitizer.h"
+
 namespace cdb {
 
 // AddressSanitizer checks heap blocks, not reserved address space: in its builds the arrays grow
-// on the heap. (GCC says so by __SANITIZE_ADDRESS__, clang by __has_feature.)
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kGrowOnlyArrayOnHeap = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-inline constexpr bool kGrowOnlyArrayOnHeap = true;
-#else
-inline constexpr bool kGrowOnlyArrayOnHeap = false;
-#endif
-#else
-inline constexpr bool kGrowOnlyArrayOnHeap = false;
-#endif
+// on the heap.
+inline constexpr bool kGrowOnlyArrayOnHeap = kAddressSanitizer;
 
 template <class T>
 class GrowOnlyArray {

@@ -5,19 +5,12 @@
 // walks the same paths at a quarter of the instrumented cost.
 #include <algorithm>
 
+#include "core/AddressSanitizer.h"
+
 namespace cdb::test {
 
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kUnderSanitizers = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-inline constexpr bool kUnderSanitizers = true;
-#else
-inline constexpr bool kUnderSanitizers = false;
-#endif
-#else
-inline constexpr bool kUnderSanitizers = false;
-#endif
+// (The sanitizer stage's build is the AddressSanitizer one, with UBSan beside it.)
+inline constexpr bool kUnderSanitizers = kAddressSanitizer;
 
 // `cases` in the release build, a quarter of them (at least one) under the sanitizers.
 template <class Count>
