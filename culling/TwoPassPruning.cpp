@@ -30,14 +30,8 @@ void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                          const std::vector<SetMember>& ordered, const PassPair& passes,
                          TwoPassAnswers& answers) {
   const auto drawMember = [&](const SetMember& m) {
-    if (m.allTriangles())
-      backend.queryTriangles(wholeMesh(scene, m.object));
-    else
-      backend.queryTriangles(m.object, m.triangles);
-    if (memberTriangleCount(scene, m) == scene.meshOf(m.object).triangleCount())
-      backend.writeRange(wholeMesh(scene, m.object));
-    else
-      backend.writeTriangles(m.object, m.triangles);
+    queryMemberTriangles(backend, scene, m);
+    writeMemberTriangles(backend, scene, m);
   };
   backend.beginPass(passes.first, passes.firstDepth);
   for (const auto& m : ordered) drawMember(m);
@@ -81,11 +75,7 @@ std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend, const S
   std::vector<SetMember> kept;
   std::size_t piece = 0;
   const auto notInBoth = [&](std::size_t i) { return !answers.inBoth(i); };
-  for (auto& m : ordered) {
-    const std::size_t count = memberTriangleCount(scene, m);
-    keepTriangles(scene, std::move(m), piece, notInBoth, kept);
-    piece += count;
-  }
+  for (auto& m : ordered) piece += keepTriangles(scene, std::move(m), piece, notInBoth, kept);
   return kept;
 }
 
@@ -98,6 +88,20 @@ std::vector<SetMember> withAllTriangles(const std::vector<ObjectId>& objects) {
 
 std::size_t memberTriangleCount(const SceneGeometry& scene, const SetMember& m) {
   return m.allTriangles() ? scene.meshOf(m.object).triangleCount() : m.triangles.size();
+}
+
+QueryIndex queryMemberTriangles(VisibilityBackend& backend, const SceneGeometry& scene,
+                                const SetMember& m) {
+  return m.allTriangles() ? backend.queryTriangles(wholeMesh(scene, m.object))
+                          : backend.queryTriangles(m.object, m.triangles);
+}
+
+void writeMemberTriangles(VisibilityBackend& backend, const SceneGeometry& scene,
+                          const SetMember& m) {
+  if (memberTriangleCount(scene, m) == scene.meshOf(m.object).triangleCount())
+    backend.writeRange(wholeMesh(scene, m.object));
+  else
+    backend.writeTriangles(m.object, m.triangles);
 }
 
 CullingResult singleSetResult(const SceneGeometry& scene, std::vector<SetMember> members,

@@ -81,32 +81,42 @@ void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
 // How many triangles a member has: its list's, or its mesh's when it has every triangle.
 [[nodiscard]] std::size_t memberTriangleCount(const SceneGeometry& scene, const SetMember& m);
 
+// A member's triangles as one batch (an answer per triangle, in its list's order or its mesh's),
+// and its triangles written (as the whole mesh where it has them all).
+QueryIndex queryMemberTriangles(VisibilityBackend& backend, const SceneGeometry& scene,
+                                const SetMember& m);
+void writeMemberTriangles(VisibilityBackend& backend, const SceneGeometry& scene,
+                          const SetMember& m);
+
 // Appends to `kept` member `m` (consumed) with the triangles whose piece `keep` accepts (pieces
 // first, first + 1, ..., one per triangle as memberTriangleCount counts them): nothing when it
 // keeps none, no list when a member of every triangle keeps them all. A list is narrowed in place
-// (the triangle level's lists keep their memory from axis to axis).
+// (the triangle level's lists keep their memory from axis to axis). Returns how many pieces were
+// the member's.
 template <class Keep>
-void keepTriangles(const SceneGeometry& scene, SetMember&& m, std::size_t first, Keep&& keep,
-                   std::vector<SetMember>& kept) {
+std::size_t keepTriangles(const SceneGeometry& scene, SetMember&& m, std::size_t first,
+                          Keep&& keep, std::vector<SetMember>& kept) {
   if (m.allTriangles()) {
     const auto n = static_cast<std::uint32_t>(scene.meshOf(m.object).triangleCount());
     std::uint32_t count = 0;
     for (std::uint32_t t = 0; t < n; ++t) count += keep(first + t) ? 1u : 0u;
-    if (count == 0) return;
+    if (count == 0) return n;
     if (count < n) {  // (all of them: no list)
       m.triangles.reserve(count);
       for (std::uint32_t t = 0; t < n; ++t)
         if (keep(first + t)) m.triangles.push_back(t);
     }
     kept.push_back(std::move(m));
-    return;
+    return n;
   }
+  const std::size_t n = m.triangles.size();
   std::size_t out = 0;
-  for (std::size_t k = 0; k < m.triangles.size(); ++k)
+  for (std::size_t k = 0; k < n; ++k)
     if (keep(first + k)) m.triangles[out++] = m.triangles[k];
-  if (out == 0) return;
+  if (out == 0) return n;
   m.triangles.resize(out);
   kept.push_back(std::move(m));
+  return n;
 }
 
 // CULLIDE's two levels along its three axes: every object pruned along each axis in turn

@@ -50,27 +50,13 @@ void OrderIndependentCullide::pruneTriangles(std::vector<SetMember>& members,
   for (const auto& m : members) objects.push_back(m.object);
   backend_->beginPass({axis, bounds_.unionOf(objects), options_.resolution},
                       DepthUse::OrderIndependent);
-  for (const auto& m : members) {
-    if (memberTriangleCount(*scene_, m) == scene_->meshOf(m.object).triangleCount())
-      backend_->writeRange(wholeMesh(*scene_, m.object));
-    else
-      backend_->writeTriangles(m.object, m.triangles);
-  }
-  for (const auto& m : members) {
-    if (m.allTriangles())
-      (void)backend_->queryTriangles(wholeMesh(*scene_, m.object));
-    else
-      (void)backend_->queryTriangles(m.object, m.triangles);
-  }
+  for (const auto& m : members) writeMemberTriangles(*backend_, *scene_, m);
+  for (const auto& m : members) (void)queryMemberTriangles(*backend_, *scene_, m);
   backend_->fetchResults(visible_);
   std::vector<SetMember> kept;
   std::size_t piece = 0;
   const auto occluded = [&](std::size_t i) { return !visible_[i]; };
-  for (auto& m : members) {
-    const std::size_t count = memberTriangleCount(*scene_, m);
-    keepTriangles(*scene_, std::move(m), piece, occluded, kept);
-    piece += count;
-  }
+  for (auto& m : members) piece += keepTriangles(*scene_, std::move(m), piece, occluded, kept);
   members = std::move(kept);
 }
 
