@@ -4,20 +4,22 @@ namespace cdb {
 
 void objectPassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                        const std::vector<ObjectId>& order, const PassPair& passes,
-                       TwoPassAnswers& answers) {
+                       TwoPassAnswers& answers, PassAnswersUse use) {
+  const std::size_t n = order.size();
+  answers.firstQuery.resize(n);
   backend.beginPass(passes.first, passes.firstDepth);
-  for (ObjectId o : order) {
-    backend.queryRange(wholeMesh(scene, o));
-    backend.writeRange(wholeMesh(scene, o));
+  for (std::size_t i = 0; i < n; ++i) {
+    answers.firstQuery[i] = backend.queryRange(wholeMesh(scene, order[i]));
+    backend.writeRange(wholeMesh(scene, order[i]));
   }
   backend.beginPass(passes.second, passes.secondDepth);
-  for (auto it = order.rbegin(); it != order.rend(); ++it) {
-    backend.queryRange(wholeMesh(scene, *it));
-    backend.writeRange(wholeMesh(scene, *it));
+  for (std::size_t i = n; i-- > 0;) {
+    const QueryIndex q = backend.queryRange(wholeMesh(scene, order[i]));
+    if (use == PassAnswersUse::InBoth) backend.gateAnswers(q, answers.firstQuery[i], 1);
+    backend.writeRange(wholeMesh(scene, order[i]));
   }
   backend.fetchResults(answers.fetched);
 
-  const std::size_t n = order.size();
   answers.first.resize(n);
   answers.second.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -28,15 +30,22 @@ void objectPassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
 
 void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                          const std::vector<SetMember>& ordered, const PassPair& passes,
-                         TwoPassAnswers& answers) {
-  const auto drawMember = [&](const SetMember& m) {
-    queryMemberTriangles(backend, scene, m);
-    writeMemberTriangles(backend, scene, m);
-  };
+                         TwoPassAnswers& answers, PassAnswersUse use) {
+  const std::size_t members = ordered.size();
+  answers.firstQuery.resize(members);
   backend.beginPass(passes.first, passes.firstDepth);
-  for (const auto& m : ordered) drawMember(m);
+  for (std::size_t i = 0; i < members; ++i) {
+    answers.firstQuery[i] = queryMemberTriangles(backend, scene, ordered[i]);
+    writeMemberTriangles(backend, scene, ordered[i]);
+  }
   backend.beginPass(passes.second, passes.secondDepth);
-  for (auto it = ordered.rbegin(); it != ordered.rend(); ++it) drawMember(*it);
+  for (std::size_t i = members; i-- > 0;) {
+    const QueryIndex q = queryMemberTriangles(backend, scene, ordered[i]);
+    if (use == PassAnswersUse::InBoth && q != kNoQuery)
+      backend.gateAnswers(q, answers.firstQuery[i],
+                          static_cast<std::uint32_t>(memberTriangleCount(scene, ordered[i])));
+    writeMemberTriangles(backend, scene, ordered[i]);
+  }
   backend.fetchResults(answers.fetched);
 
   std::size_t total = 0;
@@ -60,7 +69,7 @@ void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
 std::vector<ObjectId> pruneObjectsTwoPass(VisibilityBackend& backend, const SceneGeometry& scene,
                                           const std::vector<ObjectId>& order,
                                           const PassPair& passes, TwoPassAnswers& answers) {
-  objectPassAnswers(backend, scene, order, passes, answers);
+  objectPassAnswers(backend, scene, order, passes, answers, PassAnswersUse::InBoth);
   std::vector<ObjectId> kept;
   kept.reserve(order.size());
   for (std::size_t i = 0; i < order.size(); ++i)
@@ -71,7 +80,7 @@ std::vector<ObjectId> pruneObjectsTwoPass(VisibilityBackend& backend, const Scen
 std::vector<SetMember> pruneTrianglesTwoPass(VisibilityBackend& backend, const SceneGeometry& scene,
                                              std::vector<SetMember> ordered, const PassPair& passes,
                                              TwoPassAnswers& answers) {
-  trianglePassAnswers(backend, scene, ordered, passes, answers);
+  trianglePassAnswers(backend, scene, ordered, passes, answers, PassAnswersUse::InBoth);
   std::vector<SetMember> kept;
   std::size_t piece = 0;
   const auto notInBoth = [&](std::size_t i) { return !answers.inBoth(i); };

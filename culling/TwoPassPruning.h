@@ -41,14 +41,21 @@ struct TwoPassAnswers {
   std::vector<std::uint8_t> first;
   std::vector<std::uint8_t> second;
   std::vector<std::uint8_t> fetched;  // the backend's answers in issue order, reused across calls
+  std::vector<QueryIndex> firstQuery;  // each member's first pass-1 answer (a scratch)
   [[nodiscard]] bool inBoth(std::size_t piece) const { return first[piece] && second[piece]; }
 };
+
+// What a strategy reads of the two passes: each pass' answers on their own (quick_cullide's
+// pairs), or only whether a piece is fully visible in both (CULLIDE's pruning). Then each pass-2
+// query is gated by the same piece's pass-1 answer (VisibilityBackend::gateAnswers): `second`
+// holds "visible in both", and a backend need not test in pass 2 what pass 1 found occluded.
+enum class PassAnswersUse { EachPass, InBoth };
 
 // Object level: both passes over `order` (pass 1's draw order), each object queried then drawn
 // whole. `answers` is reused across calls.
 void objectPassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                        const std::vector<ObjectId>& order, const PassPair& passes,
-                       TwoPassAnswers& answers);
+                       TwoPassAnswers& answers, PassAnswersUse use = PassAnswersUse::EachPass);
 
 // Triangle level: one query per triangle, a member's triangles in one batch, then the member
 // drawn; `ordered` is pass 1's order, each member with its triangle list or none (every triangle
@@ -57,7 +64,7 @@ void objectPassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
 // another in pass-1 order, a member's in its list's order (or its mesh's).
 void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                          const std::vector<SetMember>& ordered, const PassPair& passes,
-                         TwoPassAnswers& answers);
+                         TwoPassAnswers& answers, PassAnswersUse use = PassAnswersUse::EachPass);
 
 // CULLIDE's pruning on those answers. Object level: the objects not fully visible in both passes,
 // in `order`'s order.

@@ -43,7 +43,8 @@ void CullideWithHierarchy::pruneAlong(std::vector<ObjectId>& objects, int axis,
   };
   // Pass 1 tests each node against the objects drawn before its own, pass 2 (reverse order,
   // fresh depth) against those after it; both passes are issued before the one fetch. An
-  // object's nodes are all queried before any is written.
+  // object's nodes are all queried before any is written. Only a node fully visible in both
+  // leaves, so pass 2's answers are gated by pass 1's (a backend need not test the others again).
   std::vector<QueryIndex> first1(objects.size());
   std::vector<QueryIndex> first2(objects.size());
   backend_->beginPass(view, DepthUse::Fresh);
@@ -54,6 +55,7 @@ void CullideWithHierarchy::pruneAlong(std::vector<ObjectId>& objects, int axis,
   backend_->beginPass(view, DepthUse::Fresh);
   for (std::size_t i = objects.size(); i-- > 0;) {
     first2[i] = backend_->queryBoxes(objects[i], boxesOf(i));
+    backend_->gateAnswers(first2[i], first1[i], static_cast<std::uint32_t>(boxesOf(i).size()));
     backend_->writeBoxes(objects[i], boxesOf(i));
   }
   backend_->fetchResults(visible_);

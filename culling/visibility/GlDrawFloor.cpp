@@ -9,7 +9,7 @@
 namespace cdb {
 
 struct GlDrawFloor::Command {
-  enum class Kind : std::uint8_t { Options, Poses, Pass, Query, Write, WriteRuns, Fetch };
+  enum class Kind : std::uint8_t { Options, Poses, Pass, Query, Write, WriteRuns, Gate, Fetch };
   Kind kind = Kind::Pass;
   ObjectId object = 0;
   GlMeshSlot slot;
@@ -27,6 +27,7 @@ struct GlDrawFloor::Program {
   std::vector<Eigen::Matrix4f, Eigen::aligned_allocator<Eigen::Matrix4f>> locals;
   std::vector<std::vector<GlVisibilityPipeline::Run>> runs;
   std::vector<const std::vector<std::uint8_t>*> expected;  // per fetch
+  std::vector<const VisibilityCall*> gates;  // GateAnswers calls, applied at the next fetch
   std::size_t queries = 0, draws = 0;
 };
 
@@ -135,6 +136,10 @@ GlDrawFloor::Program GlDrawFloor::lower(std::span<const VisibilityCall> ops) {
         }
         break;
       }
+      case K::GateAnswers:
+        c.kind = C::Gate, c.payload = p.gates.size();
+        p.gates.push_back(&op);
+        break;
       case K::FetchResults:
         c.kind = C::Fetch, c.payload = p.expected.size();
         p.expected.push_back(&op.answers);
@@ -154,6 +159,7 @@ void GlDrawFloor::run(const Program& p, std::vector<std::vector<std::uint8_t>>& 
   }
   pipeline_.setConservative(options_.conservative);
   pipeline_.setRawDepthOffset(options_.rawDepthOffset);
+  std::vector<const VisibilityCall*> gates;  // since the last fetch
   for (const Command& c : p.commands) {
     switch (c.kind) {
       case C::Options:
@@ -189,8 +195,15 @@ void GlDrawFloor::run(const Program& p, std::vector<std::vector<std::uint8_t>>& 
         pipeline_.drawRuns(c.slot, runs);
         break;
       }
+      case C::Gate:
+        gates.push_back(p.gates[c.payload]);
+        break;
       case C::Fetch:
         pipeline_.fetch(answers[c.payload]);
+        // The answers the recorded backend gave: gated as its interface gated them.
+        for (const VisibilityCall* g : gates)
+          applyAnswerGate(answers[c.payload], g->gated, g->gate, g->count);
+        gates.clear();
         break;
     }
   }

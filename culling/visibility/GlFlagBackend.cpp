@@ -375,7 +375,7 @@ void GlFlagBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> loc
   drawBoxes(object, localBoxes, DrawRole::Write, 0);
 }
 
-void GlFlagBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
+void GlFlagBackend::fetchAnswers(std::vector<std::uint8_t>& fullyVisible) {
   // Writes are drawn by a fetch too, so that tests after it in the pass read them.
   if (orderIndependent_) drawPassTests();
   if (flags_.used() > 0) ++counters_.fetches;

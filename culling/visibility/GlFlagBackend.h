@@ -55,10 +55,12 @@ class GlFlagBackend final : public VisibilityBackend {
   void writeBox(ObjectId object, const OrientedBox& localBox) override;
   void writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) override;
 
-  void fetchResults(std::vector<std::uint8_t>& fullyVisible) override;
 
   [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
   void resetCounters() override { counters_ = {}; }
+
+ protected:
+  void fetchAnswers(std::vector<std::uint8_t>& fullyVisible) override;
 
  private:
   // Draws of checked arguments; `item` is the first item of a test (ignored by writes).

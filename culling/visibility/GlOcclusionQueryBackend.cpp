@@ -119,7 +119,7 @@ void GlOcclusionQueryBackend::writeTriangles(ObjectId object,
   counters_.trianglesDrawn += triangles.size();
 }
 
-void GlOcclusionQueryBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
+void GlOcclusionQueryBackend::fetchAnswers(std::vector<std::uint8_t>& fullyVisible) {
   if (pipeline_.pendingQueries() > 0) ++counters_.fetches;
   const auto start = std::chrono::steady_clock::now();
   pipeline_.fetch(fullyVisible);

@@ -34,7 +34,6 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   void writeRange(const MeshRange& range) override;
   void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) override;
   void writeBox(ObjectId object, const OrientedBox& localBox) override;
-  void fetchResults(std::vector<std::uint8_t>& fullyVisible) override;
 
   [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
   void resetCounters() override { counters_ = {}; }
@@ -42,6 +41,9 @@ class GlOcclusionQueryBackend final : public VisibilityBackend {
   // The largest frame-buffer side this GL renders at (GL_MAX_RENDERBUFFER_SIZE and
   // GL_MAX_VIEWPORT_DIMS), so a run can refuse a resolution before it simulates anything.
   [[nodiscard]] int maxResolution() const override { return pipeline_.maxResolution(); }
+
+ protected:
+  void fetchAnswers(std::vector<std::uint8_t>& fullyVisible) override;
 
  private:
   // Draws of already checked arguments.

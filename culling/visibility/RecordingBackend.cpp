@@ -82,9 +82,15 @@ void RecordingBackend::writeBox(ObjectId object, const OrientedBox& localBox) {
   log(VisibilityCall::ofBox(VisibilityCall::Kind::WriteBox, object, localBox));
 }
 
-void RecordingBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
+void RecordingBackend::fetchAnswers(std::vector<std::uint8_t>& fullyVisible) {
   inner_.fetchResults(fullyVisible);
   log(VisibilityCall::Kind::FetchResults).answers = fullyVisible;
+}
+
+void RecordingBackend::gateSet(QueryIndex gated, QueryIndex gate, std::uint32_t count) {
+  inner_.gateAnswers(gated, gate, count);
+  VisibilityCall& op = log(VisibilityCall::Kind::GateAnswers);
+  op.gated = gated, op.gate = gate, op.count = count;
 }
 
 void replayOps(VisibilityBackend& target, std::span<const VisibilityCall> ops,
@@ -138,6 +144,9 @@ void replayOps(VisibilityBackend& target, std::span<const VisibilityCall> ops,
         break;
       case VisibilityCall::Kind::WriteBoxes:
         target.writeBoxes(op.object, op.boxes);
+        break;
+      case VisibilityCall::Kind::GateAnswers:
+        target.gateAnswers(op.gated, op.gate, op.count);
         break;
     }
   }

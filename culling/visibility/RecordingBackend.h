@@ -33,12 +33,15 @@ class RecordingBackend final : public VisibilityBackend {
   void writeRange(const MeshRange& range) override;
   void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) override;
   void writeBox(ObjectId object, const OrientedBox& localBox) override;
-  void fetchResults(std::vector<std::uint8_t>& fullyVisible) override;
   [[nodiscard]] VisibilityCounters counters() const override { return inner_.counters(); }
   void resetCounters() override { inner_.resetCounters(); }
 
   [[nodiscard]] const std::vector<VisibilityCall>& ops() const { return ops_; }
   void clear() { ops_.clear(); }
+
+ protected:
+  void fetchAnswers(std::vector<std::uint8_t>& fullyVisible) override;
+  void gateSet(QueryIndex gated, QueryIndex gate, std::uint32_t count) override;
 
  private:
   VisibilityCall& log(VisibilityCall::Kind kind);

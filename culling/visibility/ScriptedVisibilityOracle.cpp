@@ -74,7 +74,7 @@ void ScriptedVisibilityOracle::writeBox(ObjectId object, const OrientedBox& loca
   write(VisibilityCall::ofBox(VisibilityCall::Kind::WriteBox, object, localBox));
 }
 
-void ScriptedVisibilityOracle::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
+void ScriptedVisibilityOracle::fetchAnswers(std::vector<std::uint8_t>& fullyVisible) {
   fullyVisible = std::move(pending_);
   pending_.clear();
   ++counters_.fetches;

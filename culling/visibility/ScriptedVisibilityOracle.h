@@ -30,7 +30,6 @@ class ScriptedVisibilityOracle final : public VisibilityBackend {
   void writeRange(const MeshRange& range) override;
   void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) override;
   void writeBox(ObjectId object, const OrientedBox& localBox) override;
-  void fetchResults(std::vector<std::uint8_t>& fullyVisible) override;
   [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
   void resetCounters() override { counters_ = {}; }
 
@@ -38,6 +37,9 @@ class ScriptedVisibilityOracle final : public VisibilityBackend {
   // Objects queried in pass `pass`, in order.
   [[nodiscard]] std::vector<ObjectId> queriedObjects(int pass) const;
   [[nodiscard]] std::span<const Pose> poses() const { return poses_; }
+
+ protected:
+  void fetchAnswers(std::vector<std::uint8_t>& fullyVisible) override;
 
  private:
   QueryIndex query(VisibilityCall call);

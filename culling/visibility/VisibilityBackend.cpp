@@ -1,5 +1,9 @@
 #include "culling/visibility/VisibilityBackend.h"
 
+#include <string>
+
+#include "core/Errors.h"
+
 namespace cdb {
 
 QueryIndex VisibilityBackend::queryTriangles(const MeshRange& range) {
@@ -32,6 +36,32 @@ QueryIndex VisibilityBackend::queryBoxes(ObjectId object, std::span<const Orient
 
 void VisibilityBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) {
   for (const OrientedBox& box : localBoxes) writeBox(object, box);
+}
+
+void VisibilityBackend::gateAnswers(QueryIndex gated, QueryIndex gate, std::uint32_t count) {
+  if (count == 0) return;
+  if (gated == kNoQuery || gate == kNoQuery || gate > gated || gated - gate < count)
+    throw InputError("answers " + std::to_string(gated) + ".. gated by answers " +
+                     std::to_string(gate) + ".. (" + std::to_string(count) +
+                     " each): the gate's must all be issued before the gated");
+  gates_.push_back({gated, gate, count});
+  gateSet(gated, gate, count);
+}
+
+void applyAnswerGate(std::vector<std::uint8_t>& answers, QueryIndex gated, QueryIndex gate,
+                     std::uint32_t count) {
+  if (std::size_t{gated} + count > answers.size() || std::size_t{gate} + count > answers.size())
+    throw RunError("answers " + std::to_string(gated) + ".. were gated but not issued");
+  for (std::uint32_t k = 0; k < count; ++k)
+    answers[gated + k] = answers[gated + k] && answers[gate + k];
+}
+
+void VisibilityBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
+  fetchAnswers(fullyVisible);
+  // (Cleared first: a backend whose answers fall short leaves no gate for the next fetch.)
+  std::vector<Gate> gates;
+  gates.swap(gates_);
+  for (const Gate& g : gates) applyAnswerGate(fullyVisible, g.gated, g.gate, g.count);
 }
 
 }  // namespace cdb

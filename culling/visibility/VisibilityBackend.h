@@ -140,6 +140,11 @@ using QueryIndex = std::uint32_t;
 // Returned by a batch of no pieces: nothing was issued.
 inline constexpr QueryIndex kNoQuery = ~QueryIndex{0};
 
+// A gate applied to fetched answers: answers[gated + k] &= answers[gate + k] for k < count
+// (RunError where they were not all issued).
+void applyAnswerGate(std::vector<std::uint8_t>& answers, QueryIndex gated, QueryIndex gate,
+                     std::uint32_t count);
+
 class VisibilityBackend {
  public:
   virtual ~VisibilityBackend() = default;
@@ -184,11 +189,33 @@ class VisibilityBackend {
   // Every box (the default writes them one at a time).
   virtual void writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes);
 
-  // Answers of every query issued since the last call, in issue order: 1 = fully visible.
-  virtual void fetchResults(std::vector<std::uint8_t>& fullyVisible) = 0;
+  // Gates answers [gated, gated + count) by answers [gate, gate + count): each is fetched as 1
+  // only where the gate's answer at the same position is 1 too (their AND). Both ranges were
+  // issued since the last fetch, the gate's wholly before the gated (InputError otherwise). A
+  // strategy that reads a piece's two answers only together (CULLIDE's "fully visible in both
+  // passes") gates the second by the first, and a backend may then skip testing a piece whose
+  // gate answer is 0: the answers fetched are the same either way.
+  void gateAnswers(QueryIndex gated, QueryIndex gate, std::uint32_t count);
+  // Answers of every query issued since the last call, in issue order: 1 = fully visible (gated
+  // answers ANDed with their gates).
+  void fetchResults(std::vector<std::uint8_t>& fullyVisible);
 
   [[nodiscard]] virtual VisibilityCounters counters() const = 0;
   virtual void resetCounters() = 0;
+
+ protected:
+  // The answers as the backend found them (fetchResults then applies the gates).
+  virtual void fetchAnswers(std::vector<std::uint8_t>& fullyVisible) = 0;
+  // Told of each gate when it is set (after the gated queries were issued), for a backend that
+  // skips what a gate makes needless; nothing by default.
+  virtual void gateSet(QueryIndex /*gated*/, QueryIndex /*gate*/, std::uint32_t /*count*/) {}
+
+ private:
+  struct Gate {
+    QueryIndex gated, gate;
+    std::uint32_t count;
+  };
+  std::vector<Gate> gates_;  // set since the last fetch
 };
 
 }  // namespace cdb

@@ -24,7 +24,8 @@ struct VisibilityCall {
     QueryTriangleRange,  // each triangle of `range`
     QueryTriangles,      // each of `triangles` of `object`
     QueryBoxes,          // each of `boxes` of `object`
-    WriteBoxes
+    WriteBoxes,
+    GateAnswers  // answers `gated`.. gated by answers `gate`.., `count` each
   };
   Kind kind = Kind::BeginPass;
   int pass = -1;                         // the pass it belongs to (0, 1, ...), where the log counts them
@@ -39,6 +40,8 @@ struct VisibilityCall {
   std::vector<std::uint32_t> triangles;  // WriteTriangles, QueryTriangles
   std::vector<OrientedBox> boxes;        // QueryBoxes, WriteBoxes
   std::vector<std::uint8_t> answers;     // FetchResults: what the recorded backend answered
+  QueryIndex gated = 0, gate = 0;        // GateAnswers
+  std::uint32_t count = 0;               // GateAnswers
 
   [[nodiscard]] static VisibilityCall ofRange(Kind kind, const MeshRange& range) {
     VisibilityCall c;

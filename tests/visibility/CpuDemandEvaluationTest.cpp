@@ -157,18 +157,26 @@ void expectBothAnswers(const Outcome& outcome) {
 // CULLIDE's draws along each axis (pass 1 tests and writes every object in order, pass 2 in
 // reverse, fresh depth, one fetch), then a triangle level (per member a batch of tests, then its
 // listed triangles written), a pair of depth-sorted passes (one clear, opposite views) and node
-// boxes tested and written in both passes of a view.
-Stream cullideDraws(const SceneGeometry& scene, int resolution) {
-  return [&scene, resolution](CpuRasterBackend& backend, Outcome& out) {
+// boxes tested and written in both passes of a view. With `gated`, each pass-2 test is gated by
+// the same piece's pass-1 test, as the strategies gate them (VisibilityBackend::gateAnswers).
+Stream cullideDraws(const SceneGeometry& scene, int resolution, bool gated = true) {
+  return [&scene, resolution, gated](CpuRasterBackend& backend, Outcome& out) {
     const Aabb bounds(Eigen::Vector3d::Constant(-2.5), Eigen::Vector3d::Constant(2.5));
     const auto objects = static_cast<ObjectId>(scene.objectCount());
+    std::vector<QueryIndex> firstPass(objects);
+    // Object o's test in pass `pass` (issued as `q`), gated in pass 2 by its pass-1 test.
+    const auto gate = [&](int pass, ObjectId o, QueryIndex q, std::size_t count) {
+      if (pass == 0) firstPass[o] = q;
+      if (pass == 1 && gated)
+        backend.gateAnswers(q, firstPass[o], static_cast<std::uint32_t>(count));
+    };
     for (int axis = 0; axis < 3; ++axis) {
       const ViewSpec view{Eigen::Vector3d::Unit(axis), bounds, resolution};
       for (int pass = 0; pass < 2; ++pass) {
         backend.beginPass(view, DepthUse::Fresh);
         for (ObjectId i = 0; i < objects; ++i) {
           const ObjectId o = pass == 0 ? i : objects - 1 - i;
-          backend.queryRange(test::wholeOf(scene, o));
+          gate(pass, o, backend.queryRange(test::wholeOf(scene, o)), 1);
           backend.writeRange(test::wholeOf(scene, o));
         }
       }
@@ -183,7 +191,7 @@ Stream cullideDraws(const SceneGeometry& scene, int resolution) {
       backend.beginPass(side, DepthUse::Fresh);
       for (ObjectId i = 0; i < objects; ++i) {
         const ObjectId o = pass == 0 ? i : objects - 1 - i;
-        backend.queryTriangles(o, lists[o]);
+        gate(pass, o, backend.queryTriangles(o, lists[o]), lists[o].size());
         backend.writeTriangles(o, lists[o]);
       }
     }
@@ -211,7 +219,7 @@ Stream cullideDraws(const SceneGeometry& scene, int resolution) {
       backend.beginPass(up, DepthUse::Fresh);
       for (ObjectId i = 0; i < objects; ++i) {
         const ObjectId o = pass == 0 ? i : objects - 1 - i;
-        backend.queryBoxes(o, boxes);
+        gate(pass, o, backend.queryBoxes(o, boxes), boxes.size());
         backend.writeBoxes(o, boxes);
       }
     }
@@ -232,6 +240,43 @@ TEST_P(CpuDemandEvaluation, CullideDrawsAnswerAsPlainEvaluation) {
       expectBothAnswers(
           expectSameAsPlain(scene, poses, cullideDraws(scene, resolution), conservative));
     }
+}
+
+// Gating pass 2 by pass 1 changes no answer CULLIDE reads (the parametrised cases above compare
+// gated streams with the plain evaluation, which tests every piece) and is what skips work: with
+// the early-out, the gated stream tests fewer pieces and pixels than the same stream ungated, and
+// its pass-2 answers are the ungated ones ANDed with pass 1's.
+TEST(CpuGatedTests, PassTwoSkipsWhatPassOneFoundOccluded) {
+  std::vector<Mesh> meshes;
+  for (int o = 0; o < 9; ++o) meshes.push_back(bumpySphere(11 + o, 18 + o % 3, 16));
+  const SceneGeometry scene = test::sceneOf(std::move(meshes));
+  const std::vector<Pose> poses = posesAround(3, scene.objectCount(), 1.2);
+  const CpuEvaluation demand{};
+  for (int threads : {1, 2}) {
+    SCOPED_TRACE(testing::Message() << threads << " threads");
+    const Outcome gated = run(scene, poses, cullideDraws(scene, 96, true), true, demand, threads);
+    const Outcome ungated =
+        run(scene, poses, cullideDraws(scene, 96, false), true, demand, threads);
+    ASSERT_EQ(gated.answers.size(), ungated.answers.size());
+    EXPECT_EQ(gated.buffer, ungated.buffer);
+    // The first fetches hold an axis each: pass 1's answers, then pass 2's in reverse order.
+    const std::size_t n = scene.objectCount();
+    int gatedOff = 0;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      const auto& g = gated.answers[axis];
+      const auto& u = ungated.answers[axis];
+      ASSERT_EQ(g.size(), 2 * n);
+      for (std::size_t i = 0; i < n; ++i) {
+        EXPECT_EQ(g[i], u[i]) << "pass 1, object " << i;
+        const std::size_t second = 2 * n - 1 - i;
+        EXPECT_EQ(g[second], u[second] && u[i]) << "pass 2, object " << i;
+        gatedOff += u[second] && !u[i];
+      }
+    }
+    EXPECT_GT(gatedOff, 0) << "no object visible in pass 2 only: nothing to skip";
+    EXPECT_GT(gated.counters.tileTestsSkipped, ungated.counters.tileTestsSkipped);
+    EXPECT_LT(gated.counters.pixelsTested, ungated.counters.pixelsTested);
+  }
 }
 
 // A wall (a square facing the view) written first, then small spheres scattered over and around
@@ -332,6 +377,24 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene, bool orderIndepen
       }
       return boxes;
     };
+    // The tests issued since the last fetch (first answer, count); a third of them gated by an
+    // earlier one of as many answers (most of the same object's pieces, as CULLIDE gates).
+    std::vector<std::pair<QueryIndex, std::uint32_t>> issued;
+    const auto maybeGate = [&](QueryIndex q, std::size_t count) {
+      if (q == kNoQuery || count == 0) return;
+      const auto n = static_cast<std::uint32_t>(count);
+      std::vector<QueryIndex> gates;
+      for (const auto& [first, c] : issued)
+        if (c == n) gates.push_back(first);
+      issued.emplace_back(q, n);
+      if (!gates.empty() && pick(3) == 0)
+        backend.gateAnswers(
+            q, gates[static_cast<std::size_t>(pick(static_cast<int>(gates.size())))], n);
+    };
+    const auto fetch = [&] {
+      fetchInto(backend, out);
+      issued.clear();
+    };
     // Draws of the kinds [kind0, kind0 + kinds) of the switch below.
     const auto drawsOf = [&](int count, int kind0, int kinds) {
       for (int d = 0; d < count; ++d) {
@@ -342,20 +405,24 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene, bool orderIndepen
             o, first, static_cast<std::uint32_t>(pick(static_cast<int>(triangles - first) + 1))};
         switch (kind0 + pick(kinds)) {
           case 0:
-            backend.queryRange(test::wholeOf(scene, o));
+            maybeGate(backend.queryRange(test::wholeOf(scene, o)), 1);
             break;
           case 1:
-            backend.queryRange(part);
+            maybeGate(backend.queryRange(part), 1);
             break;
           case 2:
-            backend.queryTriangles(part);
+            maybeGate(backend.queryTriangles(part), part.triangleCount);
             break;
-          case 3:
-            backend.queryTriangles(o, someTriangles(o));
+          case 3: {
+            const std::vector<std::uint32_t> list = someTriangles(o);
+            maybeGate(backend.queryTriangles(o, list), list.size());
             break;
-          case 4:
-            backend.queryBoxes(o, someBoxes());
+          }
+          case 4: {
+            const std::vector<OrientedBox> boxes = someBoxes();
+            maybeGate(backend.queryBoxes(o, boxes), boxes.size());
             break;
+          }
           case 5:
             backend.writeRange(pick(2) ? test::wholeOf(scene, o) : part);
             break;
@@ -366,7 +433,7 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene, bool orderIndepen
             backend.writeBoxes(o, someBoxes());
             break;
           default:  // a test and a write of the same object, as the strategies draw
-            backend.queryRange(test::wholeOf(scene, o));
+            maybeGate(backend.queryRange(test::wholeOf(scene, o)), 1);
             backend.writeRange(test::wholeOf(scene, o));
         }
       }
@@ -381,7 +448,7 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene, bool orderIndepen
         backend.beginPass({direction, bounds, lastResolution}, DepthUse::OrderIndependent);
         drawsOf(10 + pick(30), 5, 3);  // writes
         drawsOf(10 + pick(30), 0, 5);  // tests
-        fetchInto(backend, out);
+        fetch();
         continue;
       }
       const Eigen::Vector3d direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
@@ -394,7 +461,7 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene, bool orderIndepen
         // Two passes, one clear, opposite views; a fetch between them half of the time.
         backend.beginPass({direction, bounds, resolution}, DepthUse::SharedFirst);
         draws(10 + pick(20));
-        if (pick(2)) fetchInto(backend, out);
+        if (pick(2)) fetch();
         backend.beginPass({-direction, bounds, resolution}, DepthUse::SharedSecond);
         draws(10 + pick(20));
       } else {
@@ -402,13 +469,13 @@ Stream randomStream(unsigned seed, const SceneGeometry& scene, bool orderIndepen
         draws(10 + pick(30));
       }
       lastResolution = resolution;
-      if (pick(3) != 0) fetchInto(backend, out);
+      if (pick(3) != 0) fetch();
       if (pick(3) == 0) {  // the pass goes on after a fetch
-        fetchInto(backend, out);
+        fetch();
         draws(5 + pick(10));
       }
     }
-    fetchInto(backend, out);
+    fetch();
     readBuffer(backend, lastResolution, out);
   };
 }

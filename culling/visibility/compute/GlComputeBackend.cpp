@@ -644,7 +644,7 @@ float GlComputeBackend::storedDepth(int x, int y) {
   return std::bit_cast<float>(bits);
 }
 
-void GlComputeBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
+void GlComputeBackend::fetchAnswers(std::vector<std::uint8_t>& fullyVisible) {
   flush();
   if (issued_ > 0) ++counters_.fetches;
   answers_.resize(issued_, 1);

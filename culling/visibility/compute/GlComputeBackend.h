@@ -61,13 +61,15 @@ class GlComputeBackend final : public VisibilityBackend {
   void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) override;
   void writeBox(ObjectId object, const OrientedBox& localBox) override;
   void writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) override;
-  void fetchResults(std::vector<std::uint8_t>& fullyVisible) override;
 
   [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
   void resetCounters() override { counters_ = {}; }
   // The stored depth the buffer the last fetch kept holds at pixel (x, y) (draws still recorded
   // are run first); for tests.
   [[nodiscard]] float storedDepth(int x, int y);
+
+ protected:
+  void fetchAnswers(std::vector<std::uint8_t>& fullyVisible) override;
 
  private:
   compute::GpuCommand& record(std::uint32_t flags, ObjectId object, std::uint32_t count);

@@ -324,6 +324,33 @@ void CpuRasterBackend::writeBoxes(ObjectId object, std::span<const OrientedBox> 
   if (!localBoxes.empty()) recordBoxes(CpuCommand::Role::Write, object, localBoxes);
 }
 
+void CpuRasterBackend::gateSet(QueryIndex gated, QueryIndex gate, std::uint32_t count) {
+  CpuRecording& recording = open_->recording;
+  // The test commands holding both answers, searched from the last (a strategy gates a query
+  // just issued by one of a pass before, a few commands per object back).
+  constexpr std::size_t kSearched = 4096;
+  const auto commandOf = [&](QueryIndex q) {
+    const std::size_t n = recording.commands.size();
+    for (std::size_t i = n; i-- > 0 && n - i <= kSearched;) {
+      const CpuCommand& c = recording.commands[i];
+      if (c.role == CpuCommand::Role::Test && c.query == q) return static_cast<std::uint32_t>(i);
+    }
+    return CpuCommand::kNone;
+  };
+  const std::uint32_t gatedAt = commandOf(gated), gateAt = commandOf(gate);
+  if (gatedAt == CpuCommand::kNone || gateAt == CpuCommand::kNone) return;
+  CpuCommand& c = recording.commands[gatedAt];
+  const CpuCommand& g = recording.commands[gateAt];
+  const auto answersOf = [](const CpuCommand& x) { return x.answerEach ? x.count : 1u; };
+  // The same pieces in the same order: the same object's mesh, list entries or boxes (a command
+  // drawing what an earlier one drew shares its `first`), each answering alike, all gated.
+  const bool same = c.object == g.object && c.source == g.source && c.first == g.first &&
+                    c.count == g.count && c.answerEach == g.answerEach;
+  if (!same || answersOf(c) != count) return;
+  c.gateCommand = gateAt;
+  c.gateBack = gated - gate;
+}
+
 std::shared_ptr<CpuRun> CpuRasterBackend::freshRun() {
   std::shared_ptr<CpuRun> run;
   if (!spareRuns_.empty()) {
@@ -381,9 +408,22 @@ void CpuRasterBackend::flush() {
     if (stores_[place[last].store].size() < tiles) stores_[place[last].store].resize(tiles);
   }
 
-  units_.clear();
+  // Chains are evaluated in phases: a chain holding a test gated by one of an earlier chain of
+  // the same phase starts the next, so that its gates' answers are final when its tiles run.
+  chainOfPass_.resize(recording.passes.size());
   for (std::uint32_t c = 0; c < chainCount; ++c)
-    for (const std::uint32_t t : chains[c].tilesUsed) units_.emplace_back(c, t);
+    for (std::uint32_t p = chains[c].firstPass; p < chains[c].endPass; ++p) chainOfPass_[p] = c;
+  const auto startsPhase = [&](std::uint32_t chain, std::uint32_t phaseStart) {
+    const CpuChain& k = chains[chain];
+    for (std::uint32_t i = recording.passes[k.firstPass].firstCommand;
+         i < recording.passes[k.endPass - 1].endCommand; ++i) {
+      const CpuCommand& c = recording.commands[i];
+      if (c.gateCommand == CpuCommand::kNone) continue;
+      const std::uint32_t gateChain = chainOfPass_[run.bins.passOf[c.gateCommand]];
+      if (gateChain >= phaseStart && gateChain < chain) return true;
+    }
+    return false;
+  };
   for (CpuTileWork& w : work_) w = {};
   const CpuAnswers answers(answers_.data());
   const auto runUnit = [&](std::size_t u) {
@@ -394,10 +434,18 @@ void CpuRasterBackend::flush() {
     evaluateTile(state, CpuScene{*scene_, meshBounds_}, run, c, t, evaluation_, answers,
                  prepared_.local(), work_.local());
   };
-  if (arena && units_.size() > 1) {
-    arena->execute([&] { tbb::parallel_for(std::size_t{0}, units_.size(), runUnit); });
-  } else {
-    for (std::size_t u = 0; u < units_.size(); ++u) runUnit(u);
+  for (std::uint32_t phaseStart = 0; phaseStart < chainCount;) {
+    std::uint32_t phaseEnd = phaseStart + 1;
+    while (phaseEnd < chainCount && !startsPhase(phaseEnd, phaseStart)) ++phaseEnd;
+    units_.clear();
+    for (std::uint32_t c = phaseStart; c < phaseEnd; ++c)
+      for (const std::uint32_t t : chains[c].tilesUsed) units_.emplace_back(c, t);
+    if (arena && units_.size() > 1) {
+      arena->execute([&] { tbb::parallel_for(std::size_t{0}, units_.size(), runUnit); });
+    } else {
+      for (std::size_t u = 0; u < units_.size(); ++u) runUnit(u);
+    }
+    phaseStart = phaseEnd;
   }
   answersInIssueOrder(recording, meshBounds_, answers_.data(), answerScratch_);
   CpuTileWork total;
@@ -421,7 +469,7 @@ void CpuRasterBackend::flush() {
   open_ = freshRun();
 }
 
-void CpuRasterBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
+void CpuRasterBackend::fetchAnswers(std::vector<std::uint8_t>& fullyVisible) {
   flush();
   if (issued_ > 0) ++counters_.fetches;
   answers_.resize(issued_, 1);

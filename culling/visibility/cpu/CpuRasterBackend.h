@@ -59,7 +59,6 @@ class CpuRasterBackend final : public VisibilityBackend {
   void writeTriangles(ObjectId object, std::span<const std::uint32_t> triangles) override;
   void writeBox(ObjectId object, const OrientedBox& localBox) override;
   void writeBoxes(ObjectId object, std::span<const OrientedBox> localBoxes) override;
-  void fetchResults(std::vector<std::uint8_t>& fullyVisible) override;
 
   [[nodiscard]] VisibilityCounters counters() const override { return counters_; }
   void resetCounters() override { counters_ = {}; }
@@ -73,6 +72,13 @@ class CpuRasterBackend final : public VisibilityBackend {
   // The depth drawing every write of the buffer the last recorded pass runs on leaves at pixel
   // (x, y) (writes still pending included); for tests.
   [[nodiscard]] float storedDepth(int x, int y);
+
+ protected:
+  void fetchAnswers(std::vector<std::uint8_t>& fullyVisible) override;
+  // A gate between two tests of this recording that draw the same pieces in the same order is
+  // kept on the gated command: its pieces whose gate answer is 0 are not tested (with the
+  // early-out), and the chains holding gates are evaluated before those they gate.
+  void gateSet(QueryIndex gated, QueryIndex gate, std::uint32_t count) override;
 
  private:
   // A command of the open pass, with the object's matrix into its screen space.
@@ -139,6 +145,7 @@ class CpuRasterBackend final : public VisibilityBackend {
   };
   std::vector<ChainPlace> chainPlaces_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> units_;  // (chain, tile) of a flush
+  std::vector<std::uint32_t> chainOfPass_;                       // of a flush
   // storedDepth's replay of one tile, valid until the next flush.
   CpuTileState storedTile_;
   std::int64_t storedTileIndex_ = -1;

@@ -58,6 +58,11 @@ struct CpuCommand {
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
   std::uint32_t listedOf = kNone;
   std::uint32_t itemsOf = kNone;
+  // A gated test (VisibilityBackend::gateAnswers) whose gate is a test of this recording drawing
+  // the same pieces in the same order: that command, and how far back its answers lie (each
+  // answer's gate is the answer gateBack before it, in draw order too). kNone: none such.
+  std::uint32_t gateCommand = kNone;
+  QueryIndex gateBack = 0;
   ScreenMatrix toScreen = ScreenMatrix::Zero();
 };
 

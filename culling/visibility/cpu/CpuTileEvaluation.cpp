@@ -221,12 +221,12 @@ bool answersEachTriangle(const CpuItem& item, const CpuPieces& pieces) {
 // writes it may read are, drawing those first, block by block) and clears the answers it finds
 // occluded. With the early-out, a batch's triangles another tile found occluded are not tested.
 void testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
-                const CpuItem& item, std::uint32_t object, bool earlyOut, CpuAnswers answers,
-                CpuTileWork& work, PendingBlocks* pending = nullptr) {
+                const CpuItem& item, std::uint32_t object, bool earlyOut, QueryIndex gateBack,
+                CpuAnswers answers, CpuTileWork& work, PendingBlocks* pending = nullptr) {
   if (answersEachTriangle(item, pieces)) {
     std::uint8_t visible[kChunkTriangles];
     for (std::size_t i = 0; i < pieces.count; ++i)
-      visible[i] = !earlyOut || answers.visible(item.answer + pieces.offset[i]);
+      visible[i] = !earlyOut || answers.open(item.answer + pieces.offset[i], gateBack);
     testEachTriangle(depth, raster, {pieces.triangles.data(), pieces.count}, visible, work.raster,
                      object, pending, pieces.extentsIfMade());
     for (std::size_t i = 0; i < pieces.count; ++i)
@@ -281,10 +281,11 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
   return left;
 }
 
-bool answered(const CpuItem& item, CpuAnswers answers) {
+// Whether no answer of a test item is open any more (each found occluded, or its gate's).
+bool answered(const CpuItem& item, CpuAnswers answers, QueryIndex gateBack) {
   const std::uint32_t n = item.answerEach ? item.count : 1;
   for (std::uint32_t i = 0; i < n; ++i)
-    if (answers.visible(item.answer + i)) return false;
+    if (answers.open(item.answer + i, gateBack)) return false;
   return true;
 }
 
@@ -375,7 +376,10 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       continue;
     }
     ++work.tests;
-    if (evaluation.earlyOut && answered(item, answers)) {
+    // (A gated test's gates are final here: its chain runs after theirs, CpuRasterBackend.)
+    const QueryIndex gateBack =
+        evaluation.earlyOut ? run.recording.commands[item.command].gateBack : QueryIndex{0};
+    if (evaluation.earlyOut && answered(item, answers, gateBack)) {
       ++work.testsSkipped;
       continue;
     }
@@ -393,7 +397,8 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     CpuPieces pieces;
     piecesOf(scene, run, item, state.depth, pieces);
     if (!readsPending) {
-      testPieces(state.depth, pieces, raster, item, object, evaluation.earlyOut, answers, work);
+      testPieces(state.depth, pieces, raster, item, object, evaluation.earlyOut, gateBack, answers,
+                 work);
       continue;
     }
     // Against what the tile holds first: occluded there, the pending writes stay pending. Visible
@@ -402,8 +407,8 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     // two steps share each piece's set-up; a batch's triangles take both one triangle at a time.)
     TestResolution resolution{at, scene, item, object, raster.orderIndependent, work};
     PendingBlocks unresolved{reading, reading, resolveForTest, &resolution};
-    testPieces(state.depth, pieces, raster, item, object, evaluation.earlyOut, answers, work,
-               &unresolved);
+    testPieces(state.depth, pieces, raster, item, object, evaluation.earlyOut, gateBack, answers,
+               work, &unresolved);
     if (state.pendingBlocks == 0) clearPending(at);
   }
   releasePrepared(at);

@@ -214,6 +214,11 @@ class CpuAnswers {
   [[nodiscard]] bool visible(QueryIndex q) const {
     return std::atomic_ref<std::uint8_t>(data_[q]).load(std::memory_order_relaxed) != 0;
   }
+  // Whether answer q can still change the fetched answers: visible so far, and so is its gate,
+  // the answer `gateBack` before it (0: not gated).
+  [[nodiscard]] bool open(QueryIndex q, QueryIndex gateBack) const {
+    return visible(q) && (gateBack == 0 || visible(q - gateBack));
+  }
   void occlude(QueryIndex q) const {
     std::atomic_ref<std::uint8_t>(data_[q]).store(0, std::memory_order_relaxed);
   }
