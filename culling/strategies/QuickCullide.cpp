@@ -7,13 +7,6 @@
 
 namespace cdb {
 
-namespace {
-
-constexpr std::uint8_t kVisibleFirst = 1;
-constexpr std::uint8_t kVisibleSecond = 2;
-
-}  // namespace
-
 QuickCullide::QuickCullide(const DetectorOptions& options) : options_(options) {}
 
 void QuickCullide::attach(const SceneGeometry& scene, VisibilityBackend& backend) {
@@ -33,7 +26,38 @@ void QuickCullide::classifyObjects(const Eigen::Vector3d& axis, bool firstAxis) 
     return;
   }
   const ViewSpec view{axis, bounds_.unionOf(objects_), options_.resolution};
-  objectPassAnswers(*backend_, *scene_, objects_, PassPair::fresh(view), answers_);
+  // Pass 1's answer is read only of an object that is the later one of a pair, pass 2's only of
+  // the earlier one: each pass tests only those (before the first axis every pair is a candidate,
+  // so every object but the first in pass 1 and the last in pass 2).
+  const std::size_t n = objects_.size();
+  std::vector<std::uint8_t> later(n, firstAxis ? 1 : 0), earlier(n, firstAxis ? 1 : 0);
+  if (firstAxis) {
+    later[0] = 0, earlier[n - 1] = 0;
+  } else {
+    for (std::uint32_t i = 0; i < n; ++i) positionOf_[objects_[i]] = i;
+    for (const ObjectPair& p : objectPairs_) earlier[positionOf_[p.a]] = later[positionOf_[p.b]] = 1;
+  }
+  std::vector<QueryIndex>& firstQuery = answers_.firstQuery;
+  std::vector<QueryIndex> secondQuery(n, kNoQuery);
+  firstQuery.assign(n, kNoQuery);
+  backend_->beginPass(view, DepthUse::Fresh);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (later[i]) firstQuery[i] = backend_->queryRange(wholeMesh(*scene_, objects_[i]));
+    backend_->writeRange(wholeMesh(*scene_, objects_[i]));
+  }
+  backend_->beginPass(view, DepthUse::Fresh);
+  for (std::size_t i = n; i-- > 0;) {
+    if (earlier[i]) secondQuery[i] = backend_->queryRange(wholeMesh(*scene_, objects_[i]));
+    backend_->writeRange(wholeMesh(*scene_, objects_[i]));
+  }
+  backend_->fetchResults(answers_.fetched);
+  // Untested answers are never read; 1 (fully visible) where they are not.
+  answers_.first.assign(n, 1);
+  answers_.second.assign(n, 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (firstQuery[i] != kNoQuery) answers_.first[i] = answers_.fetched[firstQuery[i]];
+    if (secondQuery[i] != kNoQuery) answers_.second[i] = answers_.fetched[secondQuery[i]];
+  }
   if (firstAxis) {
     // Every pair is a candidate before the first axis: list those it leaves, in pass-1 order.
     objectPairs_.clear();
@@ -42,7 +66,6 @@ void QuickCullide::classifyObjects(const Eigen::Vector3d& axis, bool firstAxis) 
         for (std::size_t j = i + 1; j < objects_.size(); ++j)
           if (!answers_.first[j]) objectPairs_.push_back({objects_[i], objects_[j]});
   } else {
-    for (std::uint32_t i = 0; i < objects_.size(); ++i) positionOf_[objects_[i]] = i;
     std::erase_if(objectPairs_, [&](const ObjectPair& p) {
       return answers_.first[positionOf_[p.b]] || answers_.second[positionOf_[p.a]];
     });
@@ -103,40 +126,58 @@ void QuickCullide::dropEmptyPairsAndMembers() {
 // The same rule per triangle: for members A before B, a triangle of A fully visible in pass 2 saw
 // all of B drawn and meets none of B's side, and a triangle of B fully visible in pass 1 none of
 // A's. So a member's side toward later members loses its triangles fully visible in pass 2, its
-// side toward earlier members those fully visible in pass 1.
+// side toward earlier members those fully visible in pass 1. Both passes draw every triangle of
+// every side, but each tests only the side it clears: pass 1 a member's side toward earlier
+// members, pass 2 its side toward later ones (the other answers would never be read).
 void QuickCullide::classifyTriangles(const Eigen::Vector3d& axis) {
   if (memberPairs_.empty()) return;
   const std::vector<SetMember> drawn = drawnTriangles();
   std::vector<ObjectId> objects(members_.size());
   for (std::size_t i = 0; i < members_.size(); ++i) objects[i] = members_[i].object;
   const ViewSpec view{axis, bounds_.unionOf(objects), options_.resolution};
-  trianglePassAnswers(*backend_, *scene_, drawn, PassPair::fresh(view), answers_);
 
-  std::vector<std::uint8_t> flags;  // per mesh triangle of the member: bit 0 pass 1, bit 1 pass 2
-  std::size_t piece = 0;
-  const auto narrow = [&](Side& side, std::uint8_t cleared) {
-    if (side.all) {
-      side.all = false;
-      side.triangles.clear();
-      for (std::uint32_t t = 0; t < flags.size(); ++t)
-        if (!(flags[t] & cleared)) side.triangles.push_back(t);
-      side.all = side.triangles.size() == flags.size();
-      if (side.all) side.triangles.clear();
-    } else {
-      std::erase_if(side.triangles, [&](std::uint32_t t) { return (flags[t] & cleared) != 0; });
-    }
+  const std::size_t n = members_.size();
+  std::vector<QueryIndex>& firstQuery = answers_.firstQuery;
+  std::vector<QueryIndex> secondQuery(n, kNoQuery);
+  firstQuery.assign(n, kNoQuery);
+  const auto testSide = [&](std::size_t i, const Side& side) {
+    const ObjectId o = members_[i].object;
+    return side.all ? backend_->queryTriangles(wholeMesh(*scene_, o))
+                    : backend_->queryTriangles(o, side.triangles);
   };
-  for (std::size_t i = 0; i < members_.size(); ++i) {
-    flags.assign(scene_->meshOf(members_[i].object).triangleCount(), 0);
-    const SetMember& d = drawn[i];
-    const std::size_t count = memberTriangleCount(*scene_, d);
-    for (std::size_t k = 0; k < count; ++k, ++piece) {
-      const std::uint32_t t = d.allTriangles() ? static_cast<std::uint32_t>(k) : d.triangles[k];
-      flags[t] = static_cast<std::uint8_t>((answers_.first[piece] ? kVisibleFirst : 0) |
-                                           (answers_.second[piece] ? kVisibleSecond : 0));
+  backend_->beginPass(view, DepthUse::Fresh);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (isLater_[i]) firstQuery[i] = testSide(i, members_[i].towardEarlier);
+    writeMemberTriangles(*backend_, *scene_, drawn[i]);
+  }
+  backend_->beginPass(view, DepthUse::Fresh);
+  for (std::size_t i = n; i-- > 0;) {
+    if (isEarlier_[i]) secondQuery[i] = testSide(i, members_[i].towardLater);
+    writeMemberTriangles(*backend_, *scene_, drawn[i]);
+  }
+  std::vector<std::uint8_t>& visible = answers_.fetched;
+  backend_->fetchResults(visible);
+
+  // A side keeps its triangles not fully visible in its pass (answers from `first`, in its order).
+  const auto narrow = [&](Side& side, std::size_t meshTriangles, QueryIndex first) {
+    if (first == kNoQuery) return;
+    const std::uint8_t* answer = visible.data() + first;
+    if (side.all) {
+      for (std::uint32_t t = 0; t < meshTriangles; ++t)
+        if (!answer[t]) side.triangles.push_back(t);
+      side.all = side.triangles.size() == meshTriangles;
+      if (side.all) side.triangles.clear();
+      return;
     }
-    if (isEarlier_[i]) narrow(members_[i].towardLater, kVisibleSecond);
-    if (isLater_[i]) narrow(members_[i].towardEarlier, kVisibleFirst);
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < side.triangles.size(); ++k)
+      if (!answer[k]) side.triangles[kept++] = side.triangles[k];
+    side.triangles.resize(kept);
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t meshTriangles = scene_->meshOf(members_[i].object).triangleCount();
+    if (isEarlier_[i]) narrow(members_[i].towardLater, meshTriangles, secondQuery[i]);
+    if (isLater_[i]) narrow(members_[i].towardEarlier, meshTriangles, firstQuery[i]);
   }
   dropEmptyPairsAndMembers();
 }

@@ -132,7 +132,10 @@ TEST(QuickCullideOracle, ClassificationFreesPairsThatCullidesPcsKeeps) {
 }
 
 TEST(QuickCullideOracle, RunsCullidesPassesInCullidesOrder) {
-  // Nothing fully visible: nothing is freed, so both draw the same pieces in the same passes.
+  // Nothing fully visible: nothing is freed, so both draw the same pieces in the same passes,
+  // except that quick_cullide tests an object (a member) in pass 1 only when it is the later one
+  // of a pair and in pass 2 only when it is the earlier one (the answers it reads): the first is
+  // never tested in pass 1, the last never in pass 2.
   const auto scene = fourTori();
   const auto poses = stackedPoses();
   ScriptedVisibilityOracle forCullide([](const VisibilityCall&, auto) { return false; });
@@ -144,7 +147,23 @@ TEST(QuickCullideOracle, RunsCullidesPassesInCullidesOrder) {
   (void)cullide.cull({poses, 0});
   const auto result = quick.cull({poses, 0});
 
-  const auto& a = forCullide.log();
+  const std::vector<ObjectId> order = forCullide.queriedObjects(0);
+  ASSERT_EQ(order.size(), 4u);
+  std::vector<VisibilityCall> a;
+  int omitted = 0;
+  for (const VisibilityCall& c : forCullide.log()) {
+    // (Passes 0-5 are the object level's, 6-11 the triangle level's, pass 1 and 2 in turn; the
+    // oracle answers a batch one triangle at a time, a QueryRange each.)
+    const bool pass1 = c.pass % 2 == 0;
+    if (c.kind == VisibilityCall::Kind::QueryRange &&
+        c.object == (pass1 ? order.front() : order.back())) {
+      ++omitted;
+      continue;
+    }
+    a.push_back(c);
+  }
+  EXPECT_EQ(omitted, 6 + 6 * static_cast<int>(scene.meshOf(0).triangleCount()))
+      << "3 axes, one object and one member's triangles a pass";
   const auto& b = forQuick.log();
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t k = 0; k < a.size(); ++k) {
