@@ -40,7 +40,7 @@ struct PassPair {
 struct TwoPassAnswers {
   std::vector<std::uint8_t> first;
   std::vector<std::uint8_t> second;
-  std::vector<std::uint8_t> fetched;  // the backend's answers in issue order, reused across calls
+  std::vector<std::uint8_t> fetched;   // the backend's answers in issue order, reused across calls
   std::vector<QueryIndex> firstQuery;  // each member's first pass-1 answer (a scratch)
   [[nodiscard]] bool inBoth(std::size_t piece) const { return first[piece] && second[piece]; }
 };

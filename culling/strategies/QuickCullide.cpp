@@ -35,7 +35,8 @@ void QuickCullide::classifyObjects(const Eigen::Vector3d& axis, bool firstAxis) 
     later[0] = 0, earlier[n - 1] = 0;
   } else {
     for (std::uint32_t i = 0; i < n; ++i) positionOf_[objects_[i]] = i;
-    for (const ObjectPair& p : objectPairs_) earlier[positionOf_[p.a]] = later[positionOf_[p.b]] = 1;
+    for (const ObjectPair& p : objectPairs_)
+      earlier[positionOf_[p.a]] = later[positionOf_[p.b]] = 1;
   }
   std::vector<QueryIndex>& firstQuery = answers_.firstQuery;
   std::vector<QueryIndex> secondQuery(n, kNoQuery);
@@ -51,7 +52,7 @@ void QuickCullide::classifyObjects(const Eigen::Vector3d& axis, bool firstAxis) 
     backend_->writeRange(wholeMesh(*scene_, objects_[i]));
   }
   backend_->fetchResults(answers_.fetched);
-  // Untested answers are never read; 1 (fully visible) where they are not.
+  // (An answer not asked for is never read: it stands at 1.)
   answers_.first.assign(n, 1);
   answers_.second.assign(n, 1);
   for (std::size_t i = 0; i < n; ++i) {

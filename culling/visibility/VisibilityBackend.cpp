@@ -57,10 +57,10 @@ void applyAnswerGate(std::vector<std::uint8_t>& answers, QueryIndex gated, Query
 }
 
 void VisibilityBackend::fetchResults(std::vector<std::uint8_t>& fullyVisible) {
-  fetchAnswers(fullyVisible);
-  // (Cleared first: a backend whose answers fall short leaves no gate for the next fetch.)
+  // (Taken first: a fetch that fails leaves no gate for the next one.)
   std::vector<Gate> gates;
   gates.swap(gates_);
+  fetchAnswers(fullyVisible);
   for (const Gate& g : gates) applyAnswerGate(fullyVisible, g.gated, g.gate, g.count);
 }
 

@@ -316,7 +316,7 @@ TEST_P(OcclusionSemantics, GateMisuseIsRejected) {
   EXPECT_THROW(backend_->gateAnswers(first, second, 2), InputError) << "the gate after the gated";
   EXPECT_THROW(backend_->gateAnswers(first + 1, first, 2), InputError) << "overlapping";
   EXPECT_THROW(backend_->gateAnswers(second, kNoQuery, 2), InputError);
-  backend_->gateAnswers(second, first, 0);  // nothing gated
+  backend_->gateAnswers(second, first, 0);      // nothing gated
   backend_->gateAnswers(second + 2, first, 2);  // not issued (yet): found at the fetch
   std::vector<std::uint8_t> answers;
   EXPECT_THROW(backend_->fetchResults(answers), RunError);

@@ -219,7 +219,9 @@ bool answersEachTriangle(const CpuItem& item, const CpuPieces& pieces) {
 
 // Tests an item's pieces against what the tile holds (with `pending`: then again where pending
 // writes it may read are, drawing those first, block by block) and clears the answers it finds
-// occluded. With the early-out, a batch's triangles another tile found occluded are not tested.
+// occluded. With the early-out, a batch's triangles another tile found occluded, or whose gate
+// is (CpuAnswers::open), are not tested, and their answers are cleared (a gated one's fetched
+// answer is 0 whatever its own).
 void testPieces(CpuDepthBuffer& depth, const CpuPieces& pieces, const RasterPass& raster,
                 const CpuItem& item, std::uint32_t object, bool earlyOut, QueryIndex gateBack,
                 CpuAnswers answers, CpuTileWork& work, PendingBlocks* pending = nullptr) {
