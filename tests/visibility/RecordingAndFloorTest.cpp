@@ -13,7 +13,8 @@ namespace cdb {
 namespace {
 
 // A row of tori, every other one dropped into its neighbour, and a CULLIDE-like frame: two passes
-// along x and z, each object tested then written, a box pass and a triangle write.
+// along x and z, each object tested then written (with `gated`, each pass-2 test gated by the same
+// object's pass-1 test), a box pass and a triangle write.
 struct ToriRun {
   SceneGeometry scene;
   std::vector<Pose> poses;
@@ -29,18 +30,20 @@ struct ToriRun {
     }
   }
 
-  void frame(VisibilityBackend& backend) const {
+  void frame(VisibilityBackend& backend, bool gated = false) const {
     backend.setPoses(poses);
     const Aabb bounds(Eigen::Vector3d(-2, -2, -2), Eigen::Vector3d(14, 2.5, 2));
+    QueryIndex first[6];
     for (const Eigen::Vector3d axis : {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ()}) {
       backend.beginPass({axis, bounds, 128}, DepthUse::SharedFirst);
       for (ObjectId o = 0; o < 6; ++o) {
-        backend.queryRange(test::wholeOf(scene, o));
+        first[o] = backend.queryRange(test::wholeOf(scene, o));
         backend.writeRange(test::wholeOf(scene, o));
       }
       backend.beginPass({-axis, bounds, 128}, DepthUse::SharedSecond);
       for (ObjectId o = 6; o-- > 0;) {
-        backend.queryRange(test::wholeOf(scene, o));
+        const QueryIndex second = backend.queryRange(test::wholeOf(scene, o));
+        if (gated) backend.gateAnswers(second, first[o], 1);
         backend.writeRange(test::wholeOf(scene, o));
       }
     }
@@ -102,6 +105,33 @@ TEST(GlDrawFloor, ReplaysTheSameWork) {
   EXPECT_EQ(t.fetches, 1u);
   EXPECT_GT(t.bestSeconds, 0.0);
   EXPECT_LE(t.bestSeconds, t.meanSeconds);
+}
+
+// Gates are logged, replayed through the interface, and applied by the floor to its own answers.
+TEST(GlDrawFloor, GatedRecordingReplaysGated) {
+  const ToriRun run;
+  GlOcclusionQueryBackend gl(test::sharedGlContext());
+  RecordingBackend plain(gl);
+  plain.attachScene(run.scene);
+  run.frame(plain);
+  RecordingBackend gated(gl);
+  gated.attachScene(run.scene);
+  run.frame(gated, true);
+  const std::vector<std::uint8_t>& answers = gated.ops().back().answers;
+  ASSERT_EQ(answers.size(), plain.ops().back().answers.size());
+  EXPECT_NE(answers, plain.ops().back().answers) << "some object visible in pass 2 only";
+  EXPECT_EQ(std::count_if(gated.ops().begin(), gated.ops().end(),
+                          [](const VisibilityCall& c) {
+                            return c.kind == VisibilityCall::Kind::GateAnswers;
+                          }),
+            12);
+
+  GlOcclusionQueryBackend again(test::sharedGlContext());
+  RecordingBackend second(again);
+  replayOps(second, gated.ops());
+  EXPECT_EQ(second.ops().back().answers, answers);
+  GlDrawFloor floor(test::sharedGlContext());
+  EXPECT_TRUE(floor.replay(gated.ops(), 1).answersMatch);
 }
 
 TEST(GlDrawFloor, RawModeRecordingReplaysInRawMode) {
