@@ -30,6 +30,12 @@ struct ToriRun {
     }
   }
 
+  // The scene attached to `recording`, then one frame.
+  void record(RecordingBackend& recording, bool gated = false) const {
+    recording.attachScene(scene);
+    frame(recording, gated);
+  }
+
   void frame(VisibilityBackend& backend, bool gated = false) const {
     backend.setPoses(poses);
     const Aabb bounds(Eigen::Vector3d(-2, -2, -2), Eigen::Vector3d(14, 2.5, 2));
@@ -66,8 +72,7 @@ TEST(RecordingBackend, ForwardsLogsAndReplays) {
   GlOcclusionQueryBackend gl(test::sharedGlContext());
   RecordingBackend recording(gl);
   EXPECT_EQ(recording.name(), "recording:gl-queries");
-  recording.attachScene(run.scene);
-  run.frame(recording);
+  run.record(recording);
   const VisibilityCounters recorded = recording.counters();
   EXPECT_EQ(recorded.queries, 30u);
   EXPECT_EQ(recorded.draws, 61u);
@@ -94,8 +99,7 @@ TEST(GlDrawFloor, ReplaysTheSameWork) {
   const ToriRun run;
   GlOcclusionQueryBackend gl(test::sharedGlContext());
   RecordingBackend recording(gl);
-  recording.attachScene(run.scene);
-  run.frame(recording);
+  run.record(recording);
   GlDrawFloor floor(test::sharedGlContext());
   const FloorTiming t = floor.replay(recording.ops(), 2);
   EXPECT_TRUE(t.answersMatch);
@@ -112,11 +116,9 @@ TEST(GlDrawFloor, GatedRecordingReplaysGated) {
   const ToriRun run;
   GlOcclusionQueryBackend gl(test::sharedGlContext());
   RecordingBackend plain(gl);
-  plain.attachScene(run.scene);
-  run.frame(plain);
+  run.record(plain);
   RecordingBackend gated(gl);
-  gated.attachScene(run.scene);
-  run.frame(gated, true);
+  run.record(gated, true);
   const std::vector<std::uint8_t>& answers = gated.ops().back().answers;
   ASSERT_EQ(answers.size(), plain.ops().back().answers.size());
   EXPECT_NE(answers, plain.ops().back().answers) << "some object visible in pass 2 only";
@@ -139,8 +141,7 @@ TEST(GlDrawFloor, RawModeRecordingReplaysInRawMode) {
   const VisibilityOptions raw{false, 1e-5};
   GlOcclusionQueryBackend gl(test::sharedGlContext(), raw);
   RecordingBackend recording(gl);
-  recording.attachScene(run.scene);
-  run.frame(recording);
+  run.record(recording);
   GlDrawFloor floor(test::sharedGlContext(), raw);
   EXPECT_TRUE(floor.replay(recording.ops(), 1).answersMatch);
 }
@@ -151,11 +152,9 @@ TEST(GlDrawFloor, PreparedRecordingsReplayAgainAndAgainEachOnItsScene) {
   shifted.scene.meshes[0] = makeTorus(1.25, 0.25, 24, 20);  // wider tori: more of them touch
   GlOcclusionQueryBackend gl(test::sharedGlContext());
   RecordingBackend first(gl);
-  first.attachScene(run.scene);
-  run.frame(first);
+  run.record(first);
   RecordingBackend second(gl);
-  second.attachScene(shifted.scene);
-  shifted.frame(second);
+  shifted.record(second);
   // A replay drawing one recording's commands on the other scene would answer differently.
   ASSERT_NE(first.ops().back().answers, second.ops().back().answers);
 
