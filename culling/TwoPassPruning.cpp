@@ -6,63 +6,44 @@ void objectPassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                        const std::vector<ObjectId>& order, const PassPair& passes,
                        TwoPassAnswers& answers, PassAnswersUse use) {
   const std::size_t n = order.size();
-  answers.firstQuery.resize(n);
-  backend.beginPass(passes.first, passes.firstDepth);
-  for (std::size_t i = 0; i < n; ++i) {
-    answers.firstQuery[i] = backend.queryRange(wholeMesh(scene, order[i]));
-    backend.writeRange(wholeMesh(scene, order[i]));
-  }
-  backend.beginPass(passes.second, passes.secondDepth);
-  for (std::size_t i = n; i-- > 0;) {
-    const QueryIndex q = backend.queryRange(wholeMesh(scene, order[i]));
-    if (use == PassAnswersUse::InBoth) backend.gateAnswers(q, answers.firstQuery[i], 1);
-    backend.writeRange(wholeMesh(scene, order[i]));
-  }
-  backend.fetchResults(answers.fetched);
-
+  const auto gated = [&](std::size_t) { return use == PassAnswersUse::InBoth ? 1u : 0u; };
+  issueTwoPasses(
+      backend, passes, n,
+      [&](Pass, std::size_t i) { return backend.queryRange(wholeMesh(scene, order[i])); },
+      [&](std::size_t i) { backend.writeRange(wholeMesh(scene, order[i])); }, answers.queries,
+      answers.fetched, gated);
   answers.first.resize(n);
   answers.second.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    answers.first[i] = answers.fetched[i];
-    answers.second[i] = answers.fetched[2 * n - 1 - i];
+    answers.first[i] = answers.fetched[answers.queries.first[i]];
+    answers.second[i] = answers.fetched[answers.queries.second[i]];
   }
 }
 
 void trianglePassAnswers(VisibilityBackend& backend, const SceneGeometry& scene,
                          const std::vector<SetMember>& ordered, const PassPair& passes,
                          TwoPassAnswers& answers, PassAnswersUse use) {
-  const std::size_t members = ordered.size();
-  answers.firstQuery.resize(members);
-  backend.beginPass(passes.first, passes.firstDepth);
-  for (std::size_t i = 0; i < members; ++i) {
-    answers.firstQuery[i] = queryMemberTriangles(backend, scene, ordered[i]);
-    writeMemberTriangles(backend, scene, ordered[i]);
-  }
-  backend.beginPass(passes.second, passes.secondDepth);
-  for (std::size_t i = members; i-- > 0;) {
-    const QueryIndex q = queryMemberTriangles(backend, scene, ordered[i]);
-    if (use == PassAnswersUse::InBoth && q != kNoQuery)
-      backend.gateAnswers(q, answers.firstQuery[i],
-                          static_cast<std::uint32_t>(memberTriangleCount(scene, ordered[i])));
-    writeMemberTriangles(backend, scene, ordered[i]);
-  }
-  backend.fetchResults(answers.fetched);
+  const auto count = [&](std::size_t i) {
+    return static_cast<std::uint32_t>(memberTriangleCount(scene, ordered[i]));
+  };
+  const auto gated = [&](std::size_t i) { return use == PassAnswersUse::InBoth ? count(i) : 0u; };
+  issueTwoPasses(
+      backend, passes, ordered.size(),
+      [&](Pass, std::size_t i) { return queryMemberTriangles(backend, scene, ordered[i]); },
+      [&](std::size_t i) { writeMemberTriangles(backend, scene, ordered[i]); }, answers.queries,
+      answers.fetched, gated);
 
   std::size_t total = 0;
-  for (const auto& m : ordered) total += memberTriangleCount(scene, m);
+  for (std::size_t i = 0; i < ordered.size(); ++i) total += count(i);
   answers.first.resize(total);
   answers.second.resize(total);
-  std::size_t first1 = 0;
-  std::size_t end2 = 2 * total;  // pass 2 runs members in reverse, so member i ends where i-1 began
-  for (const auto& m : ordered) {
-    const std::size_t count = memberTriangleCount(scene, m);
-    const std::size_t first2 = end2 - count;
-    for (std::size_t k = 0; k < count; ++k) {
-      answers.first[first1 + k] = answers.fetched[first1 + k];
-      answers.second[first1 + k] = answers.fetched[first2 + k];
+  std::size_t piece = 0;  // member i's triangles follow those of the members before it
+  for (std::size_t i = 0; i < ordered.size(); ++i) {
+    const std::uint32_t n = count(i);  // (none: no query, kNoQuery)
+    for (std::uint32_t k = 0; k < n; ++k, ++piece) {
+      answers.first[piece] = answers.fetched[answers.queries.first[i] + k];
+      answers.second[piece] = answers.fetched[answers.queries.second[i] + k];
     }
-    first1 += count;
-    end2 = first2;
   }
 }
 

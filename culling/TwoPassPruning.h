@@ -2,10 +2,12 @@
 // CULLIDE's two-pass visibility pruning (thesis 2.4), shared by `cullide` and `sorted`: pass 1
 // draws pieces in one order, testing each against those drawn before it; pass 2 draws them in
 // the reverse order. A piece fully visible in both passes touches nothing else drawn, and leaves.
-// The strategies differ only in the order and in how the two passes use the depth buffer.
+// The strategies differ only in the order and in how the two passes use the depth buffer. The
+// passes themselves (issueTwoPasses) also serve `quick_cullide` and `cullide_bvh`.
 #include <array>
 #include <cstdint>
 #include <numeric>
+#include <type_traits>
 #include <vector>
 
 #include "culling/CullingStrategy.h"
@@ -34,16 +36,58 @@ struct PassPair {
   }
 };
 
+// Where each piece's answers begin in the fetched answers, per pass (kNoQuery: the pass asked
+// nothing of it).
+struct PassQueries {
+  std::vector<QueryIndex> first;
+  std::vector<QueryIndex> second;
+};
+
 // Both passes' answers, one per piece in pass-1 order. `first`: fully visible with respect to the
 // pieces before it (pass 1); `second`: fully visible with respect to the pieces after it (pass 2).
 // By CULLIDE's lemma a piece fully visible with respect to a set collides with none of it.
 struct TwoPassAnswers {
   std::vector<std::uint8_t> first;
   std::vector<std::uint8_t> second;
-  std::vector<std::uint8_t> fetched;   // the backend's answers in issue order, reused across calls
-  std::vector<QueryIndex> firstQuery;  // each member's first pass-1 answer (a scratch)
+  std::vector<std::uint8_t> fetched;  // the backend's answers in issue order, reused across calls
+  PassQueries queries;                // where each piece's answers begin (a scratch)
   [[nodiscard]] bool inBoth(std::size_t piece) const { return first[piece] && second[piece]; }
 };
+
+// Which pass a piece is tested in (issueTwoPasses' `test`).
+enum class Pass { First, Second };
+
+// A piece's pass-2 test not gated (issueTwoPasses' `gated`).
+inline constexpr auto kNotGated = [](std::size_t) { return std::uint32_t{0}; };
+
+// CULLIDE's two passes over pieces 0 .. n - 1 (`n`, pass 1's draw order), both issued before one
+// fetch into `fetched`: pass 1 in order, pass 2 in reverse, each piece tested first and then
+// written, so that it is tested against the pieces before it (pass 1) or after it (pass 2) and
+// never against itself. `test(pass, i)` issues piece i's test in that pass and returns its first
+// answer (kNoQuery: none asked, queries.first or queries.second says so); `write(i)` draws it.
+// `gated(i)`: how many answers of piece i's pass-2 test are gated by its pass-1 test
+// (VisibilityBackend::gateAnswers; 0 for none, as kNotGated says for every piece).
+template <class Test, class Write, class Gated = std::remove_const_t<decltype(kNotGated)>>
+void issueTwoPasses(VisibilityBackend& backend, const PassPair& passes, std::size_t n, Test&& test,
+                    Write&& write, PassQueries& queries, std::vector<std::uint8_t>& fetched,
+                    Gated gated = kNotGated) {
+  queries.first.assign(n, kNoQuery);
+  queries.second.assign(n, kNoQuery);
+  backend.beginPass(passes.first, passes.firstDepth);
+  for (std::size_t i = 0; i < n; ++i) {
+    queries.first[i] = test(Pass::First, i);
+    write(i);
+  }
+  backend.beginPass(passes.second, passes.secondDepth);
+  for (std::size_t i = n; i-- > 0;) {
+    queries.second[i] = test(Pass::Second, i);
+    const std::uint32_t count = gated(i);
+    if (count > 0 && queries.first[i] != kNoQuery && queries.second[i] != kNoQuery)
+      backend.gateAnswers(queries.second[i], queries.first[i], count);
+    write(i);
+  }
+  backend.fetchResults(fetched);
+}
 
 // What a strategy reads of the two passes: each pass' answers on their own (quick_cullide's
 // pairs), or only whether a piece is fully visible in both (CULLIDE's pruning). Then each pass-2
@@ -101,8 +145,8 @@ void writeMemberTriangles(VisibilityBackend& backend, const SceneGeometry& scene
 // (the triangle level's lists keep their memory from axis to axis). Returns how many pieces were
 // the member's.
 template <class Keep>
-std::size_t keepTriangles(const SceneGeometry& scene, SetMember&& m, std::size_t first,
-                          Keep&& keep, std::vector<SetMember>& kept) {
+std::size_t keepTriangles(const SceneGeometry& scene, SetMember&& m, std::size_t first, Keep&& keep,
+                          std::vector<SetMember>& kept) {
   if (m.allTriangles()) {
     const auto n = static_cast<std::uint32_t>(scene.meshOf(m.object).triangleCount());
     std::uint32_t count = 0;

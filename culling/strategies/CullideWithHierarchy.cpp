@@ -45,20 +45,11 @@ void CullideWithHierarchy::pruneAlong(std::vector<ObjectId>& objects, int axis,
   // fresh depth) against those after it; both passes are issued before the one fetch. An
   // object's nodes are all queried before any is written. Only a node fully visible in both
   // leaves, so pass 2's answers are gated by pass 1's (a backend need not test the others again).
-  std::vector<QueryIndex> first1(objects.size());
-  std::vector<QueryIndex> first2(objects.size());
-  backend_->beginPass(view, DepthUse::Fresh);
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    first1[i] = backend_->queryBoxes(objects[i], boxesOf(i));
-    backend_->writeBoxes(objects[i], boxesOf(i));
-  }
-  backend_->beginPass(view, DepthUse::Fresh);
-  for (std::size_t i = objects.size(); i-- > 0;) {
-    first2[i] = backend_->queryBoxes(objects[i], boxesOf(i));
-    backend_->gateAnswers(first2[i], first1[i], static_cast<std::uint32_t>(boxesOf(i).size()));
-    backend_->writeBoxes(objects[i], boxesOf(i));
-  }
-  backend_->fetchResults(visible_);
+  issueTwoPasses(
+      *backend_, PassPair::fresh(view), objects.size(),
+      [&](Pass, std::size_t i) { return backend_->queryBoxes(objects[i], boxesOf(i)); },
+      [&](std::size_t i) { backend_->writeBoxes(objects[i], boxesOf(i)); }, queries_, visible_,
+      [&](std::size_t i) { return static_cast<std::uint32_t>(boxesOf(i).size()); });
 
   std::size_t kept = 0;
   for (std::size_t i = 0; i < objects.size(); ++i) {
@@ -66,7 +57,7 @@ void CullideWithHierarchy::pruneAlong(std::vector<ObjectId>& objects, int axis,
     const std::size_t count = frontier_.nodes(o).size();
     keep_.resize(count);
     for (std::size_t k = 0; k < count; ++k)
-      keep_[k] = !(visible_[first1[i] + k] && visible_[first2[i] + k]);
+      keep_[k] = !(visible_[queries_.first[i] + k] && visible_[queries_.second[i] + k]);
     if (frontier_.retain(o, keep_) > 0) objects[kept++] = o;
   }
   objects.resize(kept);

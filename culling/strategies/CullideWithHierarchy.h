@@ -13,6 +13,7 @@
 #include "core/GrowOnlyArray.h"
 #include "culling/CullingStrategy.h"
 #include "culling/DetectorRegistry.h"
+#include "culling/TwoPassPruning.h"
 #include "culling/bvh/NodeFrontier.h"
 #include "culling/bvh/SceneHierarchies.h"
 #include "scenes/CullingSpec.h"
@@ -39,6 +40,7 @@ class CullideWithHierarchy final : public CullingStrategy {
   SceneHierarchies hierarchies_;
   NodeFrontier frontier_;
   std::vector<std::uint8_t> visible_;    // query answers, reused across frames
+  PassQueries queries_;                  // where each object's answers begin, in each pass
   GrowOnlyArray<OrientedBox> boxes_;     // the objects' node boxes along one axis, in turn
   std::vector<std::size_t> boxesStart_;  // where each object's begin in boxes_, and the end
   std::vector<std::uint8_t> keep_;       // per active node of one object

@@ -38,26 +38,23 @@ void QuickCullide::classifyObjects(const Eigen::Vector3d& axis, bool firstAxis) 
     for (const ObjectPair& p : objectPairs_)
       earlier[positionOf_[p.a]] = later[positionOf_[p.b]] = 1;
   }
-  std::vector<QueryIndex>& firstQuery = answers_.firstQuery;
-  std::vector<QueryIndex> secondQuery(n, kNoQuery);
-  firstQuery.assign(n, kNoQuery);
-  backend_->beginPass(view, DepthUse::Fresh);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (later[i]) firstQuery[i] = backend_->queryRange(wholeMesh(*scene_, objects_[i]));
-    backend_->writeRange(wholeMesh(*scene_, objects_[i]));
-  }
-  backend_->beginPass(view, DepthUse::Fresh);
-  for (std::size_t i = n; i-- > 0;) {
-    if (earlier[i]) secondQuery[i] = backend_->queryRange(wholeMesh(*scene_, objects_[i]));
-    backend_->writeRange(wholeMesh(*scene_, objects_[i]));
-  }
-  backend_->fetchResults(answers_.fetched);
+  const auto wholeOf = [&](std::size_t i) { return wholeMesh(*scene_, objects_[i]); };
+  issueTwoPasses(
+      *backend_, PassPair::fresh(view), n,
+      [&](Pass pass, std::size_t i) {
+        const bool read = pass == Pass::First ? later[i] : earlier[i];
+        return read ? backend_->queryRange(wholeOf(i)) : kNoQuery;
+      },
+      [&](std::size_t i) { backend_->writeRange(wholeOf(i)); }, answers_.queries, answers_.fetched);
   // (An answer not asked for is never read: it stands at 1.)
-  answers_.first.assign(n, 1);
-  answers_.second.assign(n, 1);
+  const auto answerOf = [&](QueryIndex q) -> std::uint8_t {
+    return q == kNoQuery ? 1 : answers_.fetched[q];
+  };
+  answers_.first.resize(n);
+  answers_.second.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (firstQuery[i] != kNoQuery) answers_.first[i] = answers_.fetched[firstQuery[i]];
-    if (secondQuery[i] != kNoQuery) answers_.second[i] = answers_.fetched[secondQuery[i]];
+    answers_.first[i] = answerOf(answers_.queries.first[i]);
+    answers_.second[i] = answerOf(answers_.queries.second[i]);
   }
   if (firstAxis) {
     // Every pair is a candidate before the first axis: list those it leaves, in pass-1 order.
@@ -86,13 +83,15 @@ std::vector<SetMember> QuickCullide::drawnTriangles() const {
   for (std::size_t i = 0; i < members_.size(); ++i) {
     const Member& m = members_[i];
     drawn[i].object = m.object;
-    const Side* sides[2] = {isEarlier_[i] ? &m.towardLater : nullptr, isLater_[i] ? &m.towardEarlier : nullptr};
+    const Side* sides[2] = {isEarlier_[i] ? &m.towardLater : nullptr,
+                            isLater_[i] ? &m.towardEarlier : nullptr};
     auto& out = drawn[i].triangles;
     if ((sides[0] && sides[0]->all) || (sides[1] && sides[1]->all)) {
       // every triangle: no list
     } else if (sides[0] && sides[1]) {
-      std::set_union(sides[0]->triangles.begin(), sides[0]->triangles.end(), sides[1]->triangles.begin(),
-                     sides[1]->triangles.end(), std::back_inserter(out));
+      std::set_union(sides[0]->triangles.begin(), sides[0]->triangles.end(),
+                     sides[1]->triangles.begin(), sides[1]->triangles.end(),
+                     std::back_inserter(out));
     } else {
       out = (sides[0] ? sides[0] : sides[1])->triangles;
     }
@@ -137,27 +136,21 @@ void QuickCullide::classifyTriangles(const Eigen::Vector3d& axis) {
   for (std::size_t i = 0; i < members_.size(); ++i) objects[i] = members_[i].object;
   const ViewSpec view{axis, bounds_.unionOf(objects), options_.resolution};
 
-  const std::size_t n = members_.size();
-  std::vector<QueryIndex>& firstQuery = answers_.firstQuery;
-  std::vector<QueryIndex> secondQuery(n, kNoQuery);
-  firstQuery.assign(n, kNoQuery);
   const auto testSide = [&](std::size_t i, const Side& side) {
     const ObjectId o = members_[i].object;
     return side.all ? backend_->queryTriangles(wholeMesh(*scene_, o))
                     : backend_->queryTriangles(o, side.triangles);
   };
-  backend_->beginPass(view, DepthUse::Fresh);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (isLater_[i]) firstQuery[i] = testSide(i, members_[i].towardEarlier);
-    writeMemberTriangles(*backend_, *scene_, drawn[i]);
-  }
-  backend_->beginPass(view, DepthUse::Fresh);
-  for (std::size_t i = n; i-- > 0;) {
-    if (isEarlier_[i]) secondQuery[i] = testSide(i, members_[i].towardLater);
-    writeMemberTriangles(*backend_, *scene_, drawn[i]);
-  }
-  std::vector<std::uint8_t>& visible = answers_.fetched;
-  backend_->fetchResults(visible);
+  issueTwoPasses(
+      *backend_, PassPair::fresh(view), members_.size(),
+      [&](Pass pass, std::size_t i) {
+        const Member& m = members_[i];
+        if (pass == Pass::First) return isLater_[i] ? testSide(i, m.towardEarlier) : kNoQuery;
+        return isEarlier_[i] ? testSide(i, m.towardLater) : kNoQuery;
+      },
+      [&](std::size_t i) { writeMemberTriangles(*backend_, *scene_, drawn[i]); }, answers_.queries,
+      answers_.fetched);
+  const std::vector<std::uint8_t>& visible = answers_.fetched;
 
   // A side keeps its triangles not fully visible in its pass (answers from `first`, in its order).
   const auto narrow = [&](Side& side, std::size_t meshTriangles, QueryIndex first) {
@@ -175,10 +168,10 @@ void QuickCullide::classifyTriangles(const Eigen::Vector3d& axis) {
       if (!answer[k]) side.triangles[kept++] = side.triangles[k];
     side.triangles.resize(kept);
   };
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < members_.size(); ++i) {
     const std::size_t meshTriangles = scene_->meshOf(members_[i].object).triangleCount();
-    if (isEarlier_[i]) narrow(members_[i].towardLater, meshTriangles, secondQuery[i]);
-    if (isLater_[i]) narrow(members_[i].towardEarlier, meshTriangles, firstQuery[i]);
+    if (isEarlier_[i]) narrow(members_[i].towardLater, meshTriangles, answers_.queries.second[i]);
+    if (isLater_[i]) narrow(members_[i].towardEarlier, meshTriangles, answers_.queries.first[i]);
   }
   dropEmptyPairsAndMembers();
 }
@@ -192,7 +185,8 @@ CullingResult QuickCullide::result(const VisibilityCounters& work) const {
   PotentiallyCollidingSet set;
   set.members.reserve(members_.size());
   // Per member, its side's triangles as positions in its own list (empty: all of them).
-  std::vector<std::vector<std::uint32_t>> laterPositions(members_.size()), earlierPositions(members_.size());
+  std::vector<std::vector<std::uint32_t>> laterPositions(members_.size()),
+      earlierPositions(members_.size());
   std::vector<std::uint32_t> positionIn;
   const auto positions = [&](const Side& side, std::size_t drawnCount,
                              std::vector<std::uint32_t>& list) {
