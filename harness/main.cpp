@@ -132,6 +132,10 @@ int main(int argc, char** argv) {
                    "no progress on stderr and no average/maximum table on stdout at the end");
   std::string shard;
   runCmd->add_option("--shard", shard, "run the i-th of n shares of the cells (i/n, 1-based)");
+  runCmd->add_flag("--balance", run.balance,
+                   "with the shares started together into one --out: once this share's cells are "
+                   "done, measure those the other shares have not started (cells claimed in "
+                   "OUT/claims)");
 
   std::filesystem::path mergeOut;
   std::vector<std::filesystem::path> mergeDirs;
@@ -290,13 +294,22 @@ int main(int argc, char** argv) {
                    summary.cellsSkipped, run.outDir.c_str(), builds.c_str(),
                    std::string(cdb::buildCommit()).c_str(), run.outDir.c_str());
     }
+    // (The reproduction scripts read back "N cells measured, M resumed": kept in one piece.)
+    const std::string takenOver =
+        run.balance ? "; " + std::to_string(summary.cellsTakenOver) +
+                          " of them taken over from other shares"
+                    : "";
     if (summary.complete)
-      std::fprintf(stderr, "wrote %zu frame rows to %s (%zu cells measured, %zu resumed; false negatives: %llu)\n",
+      std::fprintf(stderr,
+                   "wrote %zu frame rows to %s (%zu cells measured, %zu resumed%s; false "
+                   "negatives: %llu)\n",
                    summary.frameRows, run.outDir.c_str(), summary.cellsRun, summary.cellsSkipped,
-                   static_cast<unsigned long long>(summary.falseNegatives));
+                   takenOver.c_str(), static_cast<unsigned long long>(summary.falseNegatives));
     else
-      std::fprintf(stderr, "shard done: %zu cells measured, %zu resumed in %s; join the shards with cdbench merge\n",
-                   summary.cellsRun, summary.cellsSkipped, run.outDir.c_str());
+      std::fprintf(stderr,
+                   "shard done: %zu cells measured, %zu resumed in %s%s; join the shards with "
+                   "cdbench merge\n",
+                   summary.cellsRun, summary.cellsSkipped, run.outDir.c_str(), takenOver.c_str());
     return 0;
   } catch (const cdb::RunInterrupted& e) {
     std::fprintf(stderr, "cdbench: interrupted (signal %d): %zu finished cells kept in %s; run the same command to resume\n",

@@ -40,6 +40,10 @@ void ProgressBar::cellDone() {
   draw(!terminal_);
 }
 
+void ProgressBar::cellTakenElsewhere() {
+  if (cellsTotal_ > cellsDone_) --cellsTotal_;
+}
+
 void ProgressBar::finish() {
   if (enabled_ && terminal_) std::fputc('\n', stderr);
 }

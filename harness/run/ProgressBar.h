@@ -13,6 +13,8 @@ class ProgressBar {
   void startCell(const std::string& label);
   void frameDone();
   void cellDone();
+  // A cell of the total that another share measures (cdbench run --balance): one fewer to do.
+  void cellTakenElsewhere();
   void finish();
 
  private:

@@ -30,6 +30,9 @@ struct RunOptions {
   bool groundTruth = true;  // --no-truth turns it off
   bool quiet = false;
   std::optional<std::string> shard;  // "i/n": run the i-th share of the cells
+  // --balance: with the shares started together into one --out, take over the others' cells
+  // not yet started once this share's own are done (each cell claimed first, CellClaim).
+  bool balance = false;
   std::vector<std::string> commandLine;  // recorded in meta.json
 };
 

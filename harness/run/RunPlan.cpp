@@ -88,4 +88,17 @@ std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard) {
   return dealt;
 }
 
+std::vector<Cell> takeOverOrder(const std::vector<Cell>& cells, const Shard& shard) {
+  std::vector<std::vector<Cell>> others;
+  for (int k = 1; k < shard.count; ++k)
+    others.push_back(shareOf(cells, {(shard.index - 1 + k) % shard.count + 1, shard.count}));
+  std::vector<Cell> order;
+  for (std::size_t back = 1;; ++back) {
+    bool any = false;
+    for (const auto& share : others)
+      if (back <= share.size()) order.push_back(share[share.size() - back]), any = true;
+    if (!any) return order;
+  }
+}
+
 }  // namespace cdb

@@ -49,5 +49,10 @@ inline constexpr int kNoResolution = 0;
 // wrapping around, so that shares started together simulate different groups first and later
 // read each other's recordings instead of simulating every group each.
 [[nodiscard]] std::vector<Cell> shareOf(const std::vector<Cell>& cells, const Shard& shard);
+// The cells of the other shares, in the order a share that has finished its own takes them over
+// (`cdbench run --balance`): each other share's cells from the last it would run backwards, so
+// that the two meet at the end of its share, the shares after this one taken in turn (one cell
+// of each, then the next of each).
+[[nodiscard]] std::vector<Cell> takeOverOrder(const std::vector<Cell>& cells, const Shard& shard);
 
 }  // namespace cdb

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +18,7 @@
 #include "culling/visibility/VisibilityBackendRegistry.h"
 #include "harness/common/AtomicFile.h"
 #include "harness/common/BuildCommit.h"
+#include "harness/run/CellClaim.h"
 #include "harness/run/CellFrames.h"
 #include "harness/run/CellMeasurement.h"
 #include "harness/run/CellStore.h"
@@ -246,6 +248,12 @@ RunSummary runScenario(const RunOptions& options) {
     else
       todo.push_back(c);
   }
+  // Balanced: then the other shares' cells, each measured here only if no share has started it
+  // when this one gets to it (a claim taken first, the cell not finished).
+  const std::size_t ownCells = todo.size();
+  if (options.balance)
+    for (const auto& c : takeOverOrder(plan, shard))
+      if (!store.done(c)) todo.push_back(c);
   store.checkFinished(plan);
   if (summary.cellsSkipped > 0)
     summary.resumedFromOtherBuilds = store.otherBuilds(std::string(buildCommit()));
@@ -270,7 +278,17 @@ RunSummary runScenario(const RunOptions& options) {
     }
   };
 
-  for (const Cell& cell : todo) {
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    const Cell& cell = todo[k];
+    std::optional<CellClaim> claim;
+    if (options.balance) {
+      claim = CellClaim::take(store.dir(), cell.key());
+      if (!claim || store.done(cell)) {  // another share's now, or finished by one
+        progress.cellTakenElsewhere();
+        continue;
+      }
+      if (k >= ownCells) ++summary.cellsTakenOver;
+    }
     frames.prepare(cell);
     progress.startCell(config.environment + " " + cell.strategy + " objects=" +
                        std::to_string(frames.movingObjects()) + " repeat=" +
@@ -284,6 +302,7 @@ RunSummary runScenario(const RunOptions& options) {
       summary.falsePositives += r.falsePositives;
     }
     store.save(cell, rows);
+    if (claim) claim->finish();
     ++summary.cellsRun;
     progress.cellDone();
   }
@@ -302,6 +321,10 @@ RunSummary runScenario(const RunOptions& options) {
   for (const auto& c : plan)
     if (!store.done(c)) return summary;  // other shards still to come: `cdbench merge` joins them
 
+  if (options.balance) {  // (every cell finished: what claims are left claim nothing)
+    std::error_code ignored;
+    std::filesystem::remove_all(options.outDir / "claims", ignored);
+  }
   const auto rows = store.load(plan);
   const nlohmann::json meta = runMetaJson(shardMeta, options, config, configText, rows, plan.size());
   summary.tables = writeRunOutputs(options.outDir, rows, meta);

@@ -23,6 +23,7 @@ namespace cdb {
 struct RunSummary {
   std::size_t cellsRun = 0;      // measured by this invocation
   std::size_t cellsSkipped = 0;  // already finished (resumed)
+  std::size_t cellsTakenOver = 0;  // of cellsRun, other shares' (--balance)
   // When cells were resumed: the other builds that measured the folder's kept cells (their times
   // are those builds').
   std::vector<std::string> resumedFromOtherBuilds;

@@ -1,5 +1,6 @@
 // Interrupted runs keep their finished cells and resume without redoing them; shards run with
-// GNU parallel and merged give the same frames as one unsharded run.
+// GNU parallel and merged give the same frames as one unsharded run; balanced shares (--balance)
+// take over the cells no other share has started and measure each cell once.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -19,6 +20,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/run/CellClaim.h"
+#include "harness/run/RunPlan.h"
 #include "harness/tables/FrameCsv.h"
 #include "tests/common/ShellCommand.h"
 
@@ -257,6 +260,84 @@ TEST(Shards, GnuParallelShardsMergedEqualTheUnshardedRun) {
                  (base / "s2").string()}),
             2);
   EXPECT_FALSE(fs::exists(partial / "frames.csv"));
+}
+
+// A command line of `args` (none holds a space or quote) with stderr joined to stdout.
+std::string commandLine(const std::vector<std::string>& args) {
+  std::string line;
+  for (const auto& a : args) line += a + " ";
+  return line + "2>&1";
+}
+
+std::vector<std::string> balancedShare(const fs::path& out, int share, int shares) {
+  auto args = sweepArgs(out);
+  for (const char* a : {"--balance", "--shard"}) args.emplace_back(a);
+  args.push_back(std::to_string(share) + "/" + std::to_string(shares));
+  return args;
+}
+
+// "N cells measured" summed over every line of `output` that says it.
+std::size_t cellsMeasured(const std::string& output) {
+  std::size_t sum = 0;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    const auto at = line.find(" cells measured");
+    if (at == std::string::npos) continue;
+    const auto start = line.find_last_not_of("0123456789", at - 1) + 1;
+    sum += std::stoul(line.substr(start, at - start));
+  }
+  return sum;
+}
+
+TEST(BalancedShards, AShareAloneTakesOverEveryCellNoOtherShareStarted) {
+  const auto whole = freshDir("balanced_whole");
+  ASSERT_EQ(run(sweepArgs(whole)), 0);
+  const auto out = freshDir("balanced_alone");
+  const auto first = cdb::test::runShellCommand(commandLine(balancedShare(out, 1, 2)));
+  ASSERT_EQ(first.exitCode, 0) << first.output;
+  // Its own 8 of the 16 cells, then share 2's: the run is whole and says so.
+  EXPECT_NE(first.output.find("16 cells measured, 0 resumed; 8 of them taken over"),
+            std::string::npos)
+      << first.output;
+  EXPECT_EQ(answers(out / "frames.csv"), answers(whole / "frames.csv"));
+  EXPECT_FALSE(fs::exists(out / "claims"));
+  // Share 2, started after, finds its cells finished.
+  const auto second = cdb::test::runShellCommand(commandLine(balancedShare(out, 2, 2)));
+  ASSERT_EQ(second.exitCode, 0) << second.output;
+  EXPECT_NE(second.output.find("0 cells measured, 8 resumed"), std::string::npos) << second.output;
+}
+
+TEST(BalancedShards, SharesStartedTogetherMeasureEachCellOnce) {
+  const auto whole = freshDir("balanced_whole2");
+  ASSERT_EQ(run(sweepArgs(whole)), 0);
+  const auto out = freshDir("balanced_together");
+  const std::string both = "( " + commandLine(balancedShare(out, 1, 2)) + " & " +
+                           commandLine(balancedShare(out, 2, 2)) + " & wait )";
+  const auto r = cdb::test::runShellCommand(both);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(cellsMeasured(r.output), 16u) << r.output;
+  if (!fs::exists(out / "frames.csv")) {  // both finished at once: the merge writes it
+    ASSERT_EQ(run({kBinary, "merge", "--out", out.string(), out.string()}), 0);
+  }
+  EXPECT_EQ(answers(out / "frames.csv"), answers(whole / "frames.csv"));
+}
+
+TEST(BalancedShards, ACellClaimedElsewhereIsLeftToItsHolder) {
+  const auto out = freshDir("balanced_claimed");
+  fs::create_directories(out);
+  const std::string key = cdb::Cell{16, 1, "sorted", 96}.key();
+  auto held = cdb::CellClaim::take(out, key);
+  ASSERT_TRUE(held.has_value());
+  const auto first = cdb::test::runShellCommand(commandLine(balancedShare(out, 1, 1)));
+  ASSERT_EQ(first.exitCode, 0) << first.output;
+  EXPECT_NE(first.output.find("shard done: 15 cells measured"), std::string::npos) << first.output;
+  EXPECT_FALSE(fs::exists(out / "cells" / (key + ".csv")));
+  EXPECT_FALSE(fs::exists(out / "frames.csv"));
+  held.reset();  // its holder gave up without measuring it: the next run does
+  const auto again = cdb::test::runShellCommand(commandLine(balancedShare(out, 1, 1)));
+  ASSERT_EQ(again.exitCode, 0) << again.output;
+  EXPECT_NE(again.output.find("1 cells measured, 15 resumed"), std::string::npos) << again.output;
+  EXPECT_TRUE(fs::exists(out / "frames.csv"));
 }
 
 }  // namespace

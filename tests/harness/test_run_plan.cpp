@@ -163,6 +163,30 @@ TEST(RunPlan, DetectorsThatDrawNothingGetOneCellPerSimulation) {
   for (const auto& cell : plan) EXPECT_TRUE(keys.insert(cell.key()).second) << cell.key();
 }
 
+TEST_P(ShareSplit, ASharesTakeOverOrderHoldsEveryOtherCellOnceFromEachShareEnd) {
+  // (cdbench run --balance) A share that has finished its own cells takes the others' from their
+  // ends, where their own shares get last, one share after the other in turn.
+  const auto& c = GetParam();
+  const auto plan = cdb::planCells(sweep(c.repeats, c.counts));
+  for (int i = 1; i <= c.shares; ++i) {
+    const auto order = cdb::takeOverOrder(plan, {i, c.shares});
+    std::multiset<std::string> taken;
+    for (const auto& cell : order) taken.insert(cell.key());
+    std::multiset<std::string> others;
+    for (const auto& cell : plan) others.insert(cell.key());
+    for (const auto& cell : cdb::shareOf(plan, {i, c.shares})) others.erase(cell.key());
+    EXPECT_EQ(taken, others) << "share " << i;
+    // The first cells taken: the last of each other share, the next share first.
+    std::size_t k = 0;
+    for (int step = 1; step < c.shares; ++step) {
+      const auto share = cdb::shareOf(plan, {(i - 1 + step) % c.shares + 1, c.shares});
+      if (share.empty()) continue;
+      ASSERT_LT(k, order.size());
+      EXPECT_EQ(order[k++].key(), share.back().key()) << "share " << i << ", step " << step;
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Sweeps, ShareSplit,
                          ::testing::Values(SplitCase{"env1_on_16", 10, {}, 16},
                                            SplitCase{"env1_on_2", 10, {}, 2},
