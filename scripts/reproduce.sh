@@ -145,7 +145,7 @@ run() {
   running "$what: $shares share$( ((shares == 1)) || echo s)"
   for ((i = 1; i <= shares; ++i)); do
     build/cdbench run "configs/$env.yaml" --visibility "$backend" --threads 1 --quiet \
-      --shard "$i/$shares" --out "$dir" "$@" >"$log.share-$i-of-$shares.log" 2>&1 &
+      --shard "$i/$shares" --balance --out "$dir" "$@" >"$log.share-$i-of-$shares.log" 2>&1 &
     pids+=($!)
   done
   for ((i = 1; i <= shares; ++i)); do wait "${pids[i - 1]}" || bad+=("$i"); done
