@@ -9,25 +9,18 @@
 #include <string>
 
 #include "harness/run/CellClaim.h"
+#include "tests/common/FreshTempDir.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path claimDir(const std::string& name) {
-  const auto dir =
-      fs::temp_directory_path() / ("cdbench_claim_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 fs::path claimFile(const fs::path& dir, const std::string& key) {
   return dir / "claims" / (key + ".lock");
 }
 
 TEST(CellClaim, OneHolderAtATimeAndFinishRemovesTheFile) {
-  const auto dir = claimDir("one");
+  const auto dir = cdb::test::freshTempDir("claim_one");
   auto first = cdb::CellClaim::take(dir, "o-_r0_cullide_64");
   ASSERT_TRUE(first.has_value());
   EXPECT_FALSE(cdb::CellClaim::take(dir, "o-_r0_cullide_64").has_value());
@@ -44,7 +37,7 @@ TEST(CellClaim, OneHolderAtATimeAndFinishRemovesTheFile) {
 }
 
 TEST(CellClaim, AnotherProcesssClaimHoldsUntilItEnds) {
-  const auto dir = claimDir("process");
+  const auto dir = cdb::test::freshTempDir("claim_process");
   int ready[2], done[2];
   ASSERT_EQ(::pipe(ready), 0);
   ASSERT_EQ(::pipe(done), 0);
