@@ -9,9 +9,6 @@
 
 namespace cdb {
 
-namespace {
-
-// One id per distinct vertex position, so that duplicated seam vertices weld.
 std::vector<std::uint32_t> weldedVertexIds(const Mesh& mesh) {
   const auto key = [&](std::uint32_t i) {
     const auto& v = mesh.vertices[i];
@@ -29,8 +26,6 @@ std::vector<std::uint32_t> weldedVertexIds(const Mesh& mesh) {
   }
   return id;
 }
-
-}  // namespace
 
 bool isClosedMesh(const Mesh& mesh) {
   const std::size_t vertexCount = mesh.vertices.size();

@@ -2,6 +2,8 @@
 // Measures of a mesh that the dynamics needs: whether it encloses a volume (then its mass comes
 // from the mesh), its signed volume, and the bounding sphere used for placement and proxies.
 #include <Eigen/Core>
+#include <cstdint>
+#include <vector>
 
 #include "scenes/Mesh.h"
 
@@ -11,6 +13,10 @@ struct BoundingSphere {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // in mesh-local coordinates
   double radius = 0.0;
 };
+
+// One id per distinct vertex position (ids 0, 1, ... in the order of the positions), so that
+// duplicated seam vertices weld.
+[[nodiscard]] std::vector<std::uint32_t> weldedVertexIds(const Mesh& mesh);
 
 // True when every edge is shared by exactly two triangles that run along it in opposite
 // directions. Vertices at the same position count as one (meshes may duplicate seam vertices);

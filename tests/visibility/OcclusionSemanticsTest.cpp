@@ -8,6 +8,7 @@
 
 #include "core/Errors.h"
 #include "scenes/ProceduralMeshes.h"
+#include "tests/common/BoxMeshes.h"
 #include "tests/visibility/GlTestSupport.h"
 
 namespace cdb {
@@ -188,7 +189,7 @@ TEST_P(OcclusionSemantics, BatchesAnswerEachPieceAgainstWhatWasWrittenBefore) {
 
   backend_->beginPass(view(Eigen::Vector3d::UnitZ()), DepthUse::Fresh);
   backend_->writeRange(wholeOf(scene_, 0));
-  const QueryIndex triangles = backend_->queryTriangles(wholeOf(scene_, 1));   // B: behind A
+  const QueryIndex triangles = backend_->queryTriangles(wholeOf(scene_, 1));  // B: behind A
   // C: in front. Its two triangles share an edge at equal depth: had the first been written
   // before the second was tested, the second would not be fully visible.
   const QueryIndex listed = backend_->queryTriangles(2, bothOfC);
@@ -196,15 +197,16 @@ TEST_P(OcclusionSemantics, BatchesAnswerEachPieceAgainstWhatWasWrittenBefore) {
   EXPECT_EQ(backend_->queryTriangles(3, {}), kNoQuery);
   EXPECT_EQ(backend_->queryBoxes(3, {}), kNoQuery);
   const QueryIndex coplanarE = backend_->queryTriangles(wholeOf(scene_, 4));
-  backend_->writeBoxes(3, std::span<const OrientedBox>(boxes + 1, 1));  // the front box
+  backend_->writeBoxes(3, std::span<const OrientedBox>(boxes + 1, 1));         // the front box
   const QueryIndex afterWrite = backend_->queryTriangles(wholeOf(scene_, 2));  // C behind it now
   std::vector<std::uint8_t> answers;
   backend_->fetchResults(answers);
   ASSERT_EQ(answers.size(), 11u);
   EXPECT_EQ(listed, triangles + 2);
   EXPECT_EQ(boxAnswers, listed + 2);
-  EXPECT_EQ((std::vector<std::uint8_t>(answers.begin() + triangles, answers.begin() + triangles + 2)),
-            (std::vector<std::uint8_t>{0, 0}))
+  EXPECT_EQ(
+      (std::vector<std::uint8_t>(answers.begin() + triangles, answers.begin() + triangles + 2)),
+      (std::vector<std::uint8_t>{0, 0}))
       << "both triangles of B lie behind A";
   EXPECT_EQ(answers[listed], 1) << "C in front of A";
   EXPECT_EQ(answers[listed + 1], 1) << "pieces of one batch do not occlude each other";
@@ -368,6 +370,35 @@ TEST_P(OcclusionSemantics, BatchOverAWholeClosedMeshAnswersEveryTriangle) {
   }
 }
 
+// A closed mesh whose parts wind different ways (a box wound outward beside one wound inward, which
+// straddles a small wall): drawn whole, it answers as if every triangle were drawn. Which faces
+// decide such a mesh cannot be told from its winding as a whole (positive here): in the inward box
+// the faces wound as turned away from the viewer are the nearest, so a backend drawing only those
+// for a test would miss its far side behind the wall, and one drawing only the faces wound as
+// turned toward the viewer for a write would store the far side, behind the wall.
+TEST_P(OcclusionSemantics, AClosedMeshWoundBothWaysAnswersAsEveryTriangleDrawn) {
+  for (bool inward : {true, false}) {
+    const Mesh parts =
+        test::joinedMeshes({test::boxMeshAt({5, 0, 0}, {1, 1, 1}, true),
+                            test::boxMeshAt({0, 0, 0}, {0.6f, 0.6f, 0.6f}, !inward)});
+    const SceneGeometry scene = test::sceneOf({squareMesh(0, 0, 0, 0.3f), parts});
+    backend_->attachScene(scene);
+    backend_->setPoses(test::identityPoses(scene.objectCount()));
+    backend_->beginPass(view(Eigen::Vector3d::UnitZ(), 128), DepthUse::Fresh);
+    backend_->writeRange(wholeOf(scene, 0));
+    backend_->queryRange(wholeOf(scene, 1));
+    backend_->beginPass(view(Eigen::Vector3d::UnitZ(), 128), DepthUse::Fresh);
+    backend_->writeRange(wholeOf(scene, 1));
+    backend_->queryRange(wholeOf(scene, 0));
+    std::vector<std::uint8_t> answers;
+    backend_->fetchResults(answers);
+    const char* which = inward ? "the small box wound inward" : "both boxes wound outward";
+    ASSERT_EQ(answers.size(), 2u);
+    EXPECT_EQ(answers[0], 0) << which << ": its far side lies behind the wall";
+    EXPECT_EQ(answers[1], 0) << which << ": its near side lies in front of the wall";
+  }
+}
+
 // A node's test and write draw the same boxes, and CULLIDE's two passes of a view draw them
 // again (the cpu backend records such repeats once): boxes drawn again answer for where they are
 // drawn now, under another pose, in another view, or with other contents in the same array.
@@ -516,7 +547,8 @@ Mesh squareStack(int copies, float cx, float cy, float z, float h, float dz) {
 // dispatches.)
 TEST_P(OcclusionSemantics, ThousandsOfDrawsOverOnePixelKeepTheirOrder) {
   const Mesh stack = squareStack(64, 0, 0, 2, 1, 0);
-  scene_ = test::sceneOf({squareMesh(0, 0, 0, 1), stack, squareMesh(0, 0, -2, 1), squareMesh(5, 0, 0, 1)});
+  scene_ = test::sceneOf(
+      {squareMesh(0, 0, 0, 1), stack, squareMesh(0, 0, -2, 1), squareMesh(5, 0, 0, 1)});
   backend_->attachScene(scene_);
   backend_->setPoses(test::identityPoses(scene_.objectCount()));
   constexpr int kBefore = 1200, kAfter = 1200;
@@ -560,7 +592,8 @@ TEST_P(OcclusionSemantics, AWriteCoveringTheImageHidesEveryCorner) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, OcclusionSemantics,
-                         testing::Combine(testing::ValuesIn(test::registeredBackends()), testing::Bool()),
+                         testing::Combine(testing::ValuesIn(test::registeredBackends()),
+                                          testing::Bool()),
                          ParamName());
 
 }  // namespace

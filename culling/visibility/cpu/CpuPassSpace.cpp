@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scenes/MeshMeasures.h"
+#include "culling/exact/SolidWinding.h"
 
 namespace cdb {
 
@@ -36,9 +36,6 @@ ScreenMatrix worldToKeyOf(const DepthPassSetup& setup) {
   return m;
 }
 
-std::int8_t meshWinding(const Mesh& mesh) {
-  const double volume = isClosedMesh(mesh) ? signedVolume(mesh) : 0.0;
-  return volume > 0 ? 1 : volume < 0 ? -1 : 0;
-}
+std::int8_t meshWinding(const Mesh& mesh) { return static_cast<std::int8_t>(solidWinding(mesh)); }
 
 }  // namespace cdb

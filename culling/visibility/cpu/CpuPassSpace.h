@@ -31,8 +31,8 @@ struct ScreenPoint {
           (m(2, 0) * x + (m(2, 1) * y + m(2, 2) * z)) + m(2, 3)};
 }
 
-// +1 when a closed mesh winds counter-clockwise seen from outside, -1 clockwise, 0 when it is not
-// closed (CpuCommand::winding).
+// CpuCommand::winding of the mesh's whole draws: solidWinding, +1 when its winding number is shown
+// never negative (a solid wound counter-clockwise seen from outside), -1 never positive, else 0.
 [[nodiscard]] std::int8_t meshWinding(const Mesh& mesh);
 
 }  // namespace cdb

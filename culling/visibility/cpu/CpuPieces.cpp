@@ -10,13 +10,13 @@ namespace cdb {
 
 namespace {
 
-// Whether a triangle of a closed mesh can decide its command. Along every line of sight a closed
-// surface is crossed as often toward the viewer as away from it (its winding number is 0 far
-// away), so behind each crossing of a face turned toward the viewer lies one of a face turned away,
-// at the same screen point: in every pixel square, the farthest depth of the mesh over what it
-// covers is reached on a face turned away (what a test needs) and the nearest on one turned
-// toward the viewer (a write). Faces near edge-on (or collapsed) are kept for both. The screen
-// frame (x, y, key) is right-handed, so a counter-clockwise triangle in x, y faces along +key.
+// Whether a triangle of a solid mesh can decide its command. The mesh's winding number is never of
+// the other sign than `winding` (solidWinding), so along every line of sight the first face crossed
+// enters the solid, turned toward the viewer, and the last leaves it, turned away: in every pixel
+// square, the farthest depth of the mesh over what it covers is reached on a face turned away
+// (what a test needs) and the nearest on one turned toward the viewer (a write). Faces near edge-on
+// (or collapsed) are kept for both. The screen frame (x, y, key) is right-handed, so a
+// counter-clockwise triangle in x, y faces along +key.
 inline bool drawnForRole(const ScreenTriangle& t, std::int8_t winding, CpuCommand::Role role) {
   if (winding == 0) return true;
   const double e1x = t.x[1] - t.x[0], e1y = t.y[1] - t.y[0];
@@ -126,8 +126,7 @@ ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox&
   return m;
 }
 
-void boxPieces(const ScreenMatrix& cube, CpuCommand::Role role, bool conservative,
-               CpuPieces& out) {
+void boxPieces(const ScreenMatrix& cube, CpuCommand::Role role, bool conservative, CpuPieces& out) {
   std::array<Eigen::Vector3d, 8> corner;
   for (int i = 0; i < 8; ++i) {
     const ScreenPoint p =

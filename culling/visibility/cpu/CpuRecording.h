@@ -34,9 +34,10 @@ struct CpuCommand {
   Source source = Source::Range;
   // Tests: one answer per triangle or box (a batch), or one for all of them.
   bool answerEach = false;
-  // Whole closed meshes (a one-answer test or a write of every triangle): +1 when the mesh winds
-  // counter-clockwise seen from outside, -1 clockwise; then only the triangles facing away
-  // (tests) or toward the viewer (writes) are drawn. 0: every triangle.
+  // Whole solid meshes (a one-answer test or a write of every triangle): solidWinding, +1 when the
+  // mesh's winding number is never negative (wound counter-clockwise seen from outside), -1 never
+  // positive; then only the triangles facing away (tests) or toward the viewer (writes) are
+  // drawn. 0: every triangle.
   std::int8_t winding = 0;
   std::uint32_t object = 0;  // the scene object drawn
   std::uint32_t mesh = 0;    // its mesh, an index into the scene's meshes
