@@ -1,7 +1,11 @@
 #include "culling/exact/SolidWinding.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -36,6 +40,19 @@ class Parts {
   std::vector<std::uint32_t> parent_;
 };
 
+// Points of one plane (that of triangle t, not collapsed) seen along the coordinate axis its
+// normal is closest to: orientations taken in that view are those in the plane up to one sign, the
+// same for all, exactly.
+struct PlaneView {
+  int drop = 0;
+  PlaneView(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    (b - a).cross(c - a).cwiseAbs().maxCoeff(&drop);
+  }
+  [[nodiscard]] Eigen::Vector2d operator()(const Eigen::Vector3d& q) const {
+    return {q[(drop + 1) % 3], q[(drop + 2) % 3]};
+  }
+};
+
 }  // namespace
 
 bool meetOnlyWhereShared(const std::array<std::uint32_t, 3>& ti,
@@ -58,8 +75,22 @@ bool meetOnlyWhereShared(const std::array<std::uint32_t, 3>& ti,
     while (b[0] != a[0]) std::rotate(b.begin(), b.begin() + 1, b.end());
     using predicates::orient3d;
     if (orient3d(p(a[0]), p(a[1]), p(a[2]), p(b[1])) == 0 &&
-        orient3d(p(a[0]), p(a[1]), p(a[2]), p(b[2])) == 0)
-      return false;  // coplanar: not decided here
+        orient3d(p(a[0]), p(a[1]), p(a[2]), p(b[2])) == 0) {
+      // Coplanar: near the corner each triangle is its wedge (the angle its two edges from the
+      // corner span), and they meet beyond the corner exactly when the wedges do, that is when
+      // an edge from the corner of one lies in the other's closed wedge.
+      const PlaneView flat(p(a[0]), p(a[1]), p(a[2]));
+      const Eigen::Vector2d o = flat(p(a[0]));
+      const auto inWedge = [&](std::uint32_t v, const Corners& t) {
+        const int turn = predicates::orient2d(o, flat(p(t[1])), flat(p(t[2])));
+        return turn * predicates::orient2d(o, flat(p(t[1])), flat(p(v))) >= 0 &&
+               turn * predicates::orient2d(o, flat(p(v)), flat(p(t[2]))) >= 0;
+      };
+      if (predicates::orient2d(o, flat(p(a[1])), flat(p(a[2]))) == 0 ||
+          predicates::orient2d(o, flat(p(b[1])), flat(p(b[2]))) == 0)
+        return false;  // a collapsed triangle: not decided
+      return !inWedge(b[1], a) && !inWedge(b[2], a) && !inWedge(a[1], b) && !inWedge(a[2], b);
+    }
     // Not coplanar: the two planes meet in a line through the shared corner, which each triangle
     // meets in a segment from that corner. If the segments overlap beyond it, the shorter one ends
     // on the edge opposite the corner of its triangle, which then meets the other triangle.
@@ -84,22 +115,14 @@ bool meetOnlyWhereShared(const std::array<std::uint32_t, 3>& ti,
     return edgeMisses(a, b) && edgeMisses(b, a);
   }
   // A shared edge: not coplanar, the triangles meet on the line of the edge only, so in the edge;
-  // coplanar, only if their third corners lie on opposite sides of it.
+  // coplanar, there only if their third corners lie on opposite sides of it.
   while (isShared(a[2], tj)) std::rotate(a.begin(), a.begin() + 1, a.end());
   const std::uint32_t d =
       *std::find_if(tj.begin(), tj.end(), [&](std::uint32_t v) { return v != a[0] && v != a[1]; });
   if (predicates::orient3d(p(a[0]), p(a[1]), p(a[2]), p(d)) != 0) return true;
-  // In the plane, seen along the coordinate axis its normal is closest to (the projection is
-  // exact for signs: both orientations are taken in the same one).
-  const Eigen::Vector3d normal = (p(a[1]) - p(a[0])).cross(p(a[2]) - p(a[0]));
-  int drop = 0;
-  normal.cwiseAbs().maxCoeff(&drop);
-  const auto flat = [&](std::uint32_t v) {
-    const Eigen::Vector3d& q = p(v);
-    return Eigen::Vector2d(q[(drop + 1) % 3], q[(drop + 2) % 3]);
-  };
-  const int third = predicates::orient2d(flat(a[0]), flat(a[1]), flat(a[2]));
-  const int other = predicates::orient2d(flat(a[0]), flat(a[1]), flat(d));
+  const PlaneView flat(p(a[0]), p(a[1]), p(a[2]));
+  const int third = predicates::orient2d(flat(p(a[0])), flat(p(a[1])), flat(p(a[2])));
+  const int other = predicates::orient2d(flat(p(a[0])), flat(p(a[1])), flat(p(d)));
   return third != 0 && other == -third;
 }
 
@@ -160,9 +183,18 @@ int solidWinding(const Mesh& mesh) {
   std::vector<Aabb> boxes(n);
   for (std::size_t i = 0; i < n; ++i)
     for (std::uint32_t v : corners[i]) boxes[i].extend(at[v]);
-  for (const IndexPair& pair : sweepAndPrune(boxes))
-    if (!meetOnlyWhereShared(corners[pair.i], corners[pair.j], at)) return 0;
-  return sign;
+  const std::vector<IndexPair> pairs = sweepAndPrune(boxes);
+  std::atomic<bool> apart = true;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        if (!apart.load(std::memory_order_relaxed)) return;
+                        const IndexPair& pair = pairs[k];
+                        if (!meetOnlyWhereShared(corners[pair.i], corners[pair.j], at))
+                          apart.store(false, std::memory_order_relaxed);
+                      }
+                    });
+  return apart.load() ? sign : 0;
 }
 
 }  // namespace cdb

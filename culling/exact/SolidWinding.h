@@ -22,12 +22,13 @@ namespace cdb {
 // one region, of winding number +1 (or -1) for that part, and the mesh's winding number at a point
 // is the sum over the parts enclosing it. 0 when any fact fails, also for meshes of which the sign
 // holds but is not shown this way: a hollow shell (its inner surface winds the other way), two
-// parts that overlap, coplanar triangles that share only a corner, a collapsed triangle.
+// parts that overlap, a collapsed triangle.
 [[nodiscard]] int solidWinding(const Mesh& mesh);
 
 // Whether two triangles, given by their corners' indices into `at` (a corner they share has one
-// index), meet nowhere but at the corners and the edge they share: exactly, except that coplanar
-// triangles sharing one corner, and two triangles of the same corners, are answered false.
+// index), meet nowhere but at the corners and the edge they share: exactly, except that two
+// triangles of the same corners, and a collapsed triangle sharing a corner in the other's plane,
+// are answered false.
 [[nodiscard]] bool meetOnlyWhereShared(const std::array<std::uint32_t, 3>& a,
                                        const std::array<std::uint32_t, 3>& b,
                                        std::span<const Eigen::Vector3d> at);

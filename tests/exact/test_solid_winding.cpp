@@ -47,7 +47,10 @@ TEST(SolidWinding, TrianglesMeetOnlyWhereTheyShareCorners) {
       {2, 2, 1},      {2, 2, -1},                     // 7, 8: an edge past it, in the plane x = y
       {-1, 0, 0},     {0, -1, 0},                     // 9, 10: in its plane, beside it
       {0.5, -1, 1},   {0.5, -1, 0},   {0.3, 0.3, 0},  // 11-13: third corners on edge 0-1
-      {0.2, 0.3, -1}, {0.3, 0.2, 1},  {0.25, 0.25, 2}, {5, 5, 5}, {5, 6, 5}, {6, 5, 5}};
+      {0.2, 0.3, -1}, {0.3, 0.2, 1},  {0.25, 0.25, 2}, {5, 5, 5}, {5, 6, 5},
+      {6, 5, 5},      {2, 1, 0},      {-1, 2, 0},  // 20, 21: a wedge over the triangle's
+      {2, 0, 0},                                   // 22: on the line of edge 0-1
+      {3, -1, 0},     {-1, 3, 0}};                 // 23, 24: a wedge holding the triangle's
   const std::array<std::uint32_t, 3> t = {0, 1, 2};
   const auto meets = [&](std::array<std::uint32_t, 3> other) {
     const bool only = meetOnlyWhereShared(t, other, at);
@@ -57,7 +60,10 @@ TEST(SolidWinding, TrianglesMeetOnlyWhereTheyShareCorners) {
   EXPECT_TRUE(meets({0, 3, 4})) << "a corner shared, the other's far edge through the inside";
   EXPECT_FALSE(meets({0, 5, 6})) << "a corner shared, apart beyond it";
   EXPECT_TRUE(meets({0, 7, 8})) << "a corner shared, its far edge through the other";
-  EXPECT_TRUE(meets({0, 9, 10})) << "coplanar, a corner shared: not decided";
+  EXPECT_FALSE(meets({0, 9, 10})) << "coplanar, a corner shared, beside it";
+  EXPECT_TRUE(meets({0, 20, 21})) << "coplanar, a corner shared, the wedges overlapping";
+  EXPECT_TRUE(meets({0, 22, 10})) << "coplanar, a corner shared, along one of its edges";
+  EXPECT_TRUE(meets({0, 23, 24})) << "coplanar, a corner shared, around it";
   EXPECT_FALSE(meets({1, 0, 11})) << "an edge shared, another plane";
   EXPECT_FALSE(meets({1, 0, 12})) << "an edge shared, coplanar, the other side";
   EXPECT_TRUE(meets({1, 0, 13})) << "an edge shared, coplanar, folded onto it";
@@ -122,7 +128,8 @@ TEST(SolidWinding, APartPushedThroughItselfIsNotASolid) {
 }
 
 // Triangles of one plane: a box face split in two shares an edge with third corners on both
-// sides (shown); a fan of coplanar triangles around a corner is not decided (0).
+// sides; a fan of coplanar triangles around a corner shares the corner only with its opposite
+// triangles, whose wedges lie apart. Both shown solid; a fan folded over itself is not.
 TEST(SolidWinding, CoplanarNeighbours) {
   Mesh fan = boxMeshAt({0, 0, 0}, {1, 1, 1}, true);
   // Split the z = + face (corners 4, 5, 6, 7; triangles 10, 11) at its centre into four.
@@ -133,7 +140,15 @@ TEST(SolidWinding, CoplanarNeighbours) {
                        {{4, 5, centre}, {5, 7, centre}, {7, 6, centre}, {6, 4, centre}});
   ASSERT_TRUE(isClosedMesh(fan));
   EXPECT_NEAR(windingNumberAt(fan, {0, 0, 0}), 1.0, 1e-9);
+  EXPECT_EQ(solidWinding(fan), 1);
+  // The centre pulled out past corner 7 in the face's plane: the fan folds over itself.
+  fan.vertices[centre] = {1.5f, 1.5f, 1.f};
+  ASSERT_TRUE(isClosedMesh(fan));
   EXPECT_EQ(solidWinding(fan), 0);
+  // Tori whose tube has flat bands (50 sides: the quads at the top and bottom of the tube lie in
+  // one plane all around), and another.
+  EXPECT_EQ(solidWinding(makeTorus(0.5, 0.2, 100, 50)), 1);
+  EXPECT_EQ(solidWinding(makeTorus(0.5, 0.2, 30, 12)), 1);
 }
 
 }  // namespace
