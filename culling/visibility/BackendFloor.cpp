@@ -4,7 +4,8 @@
 
 namespace cdb {
 
-ReplayFloor::ReplayFloor(std::unique_ptr<VisibilityBackend> backend) : backend_(std::move(backend)) {}
+ReplayFloor::ReplayFloor(std::unique_ptr<VisibilityBackend> backend)
+    : backend_(std::move(backend)) {}
 
 void ReplayFloor::prepare(std::span<const VisibilityCall> ops) {
   const SceneGeometry* scene = nullptr;
@@ -19,10 +20,14 @@ void ReplayFloor::prepare(std::span<const VisibilityCall> ops) {
   }
   if (scene == nullptr) throw InputError("the recording attaches no scene");
   ops_ = ops;
+  attached_ = false;
   answers_.assign(expected_.size(), {});
 }
 
-void ReplayFloor::replayOnce() { replayOps(*backend_, ops_, &answers_); }
+void ReplayFloor::replayOnce() {
+  replayOps(*backend_, ops_, &answers_, !attached_);
+  attached_ = true;
+}
 
 bool ReplayFloor::answersMatch() const {
   for (std::size_t i = 0; i < expected_.size(); ++i)

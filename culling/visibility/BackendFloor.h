@@ -27,7 +27,8 @@ class BackendFloor {
   [[nodiscard]] virtual bool answersMatch() const = 0;
 };
 
-// The recorded calls issued again on `backend` (a fresh backend of the recorded kind).
+// The recorded calls issued again on `backend` (a fresh backend of the recorded kind); the scene
+// is attached by the first replay only, as a strategy's frame does not attach it either.
 class ReplayFloor final : public BackendFloor {
  public:
   explicit ReplayFloor(std::unique_ptr<VisibilityBackend> backend);
@@ -40,6 +41,7 @@ class ReplayFloor final : public BackendFloor {
   std::span<const VisibilityCall> ops_;
   std::vector<const std::vector<std::uint8_t>*> expected_;  // per fetch, into ops_
   std::vector<std::vector<std::uint8_t>> answers_;          // per fetch, refilled by each replay
+  bool attached_ = false;
 };
 
 }  // namespace cdb

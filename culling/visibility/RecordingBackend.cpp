@@ -94,11 +94,12 @@ void RecordingBackend::gateSet(QueryIndex gated, QueryIndex gate, std::uint32_t 
 }
 
 void replayOps(VisibilityBackend& target, std::span<const VisibilityCall> ops,
-               std::vector<std::vector<std::uint8_t>>* answers) {
+               std::vector<std::vector<std::uint8_t>>* answers, bool attachScenes) {
   std::vector<std::uint8_t> discarded;
   std::size_t fetches = 0;
   if (answers)
-    for (const VisibilityCall& op : ops) fetches += op.kind == VisibilityCall::Kind::FetchResults ? 1 : 0;
+    for (const VisibilityCall& op : ops)
+      fetches += op.kind == VisibilityCall::Kind::FetchResults ? 1 : 0;
   if (answers) answers->resize(fetches);
   std::size_t fetch = 0;
   for (const VisibilityCall& op : ops) {
@@ -107,7 +108,7 @@ void replayOps(VisibilityBackend& target, std::span<const VisibilityCall> ops,
         target.setOptions(op.options);
         break;
       case VisibilityCall::Kind::AttachScene:
-        target.attachScene(*op.scene);
+        if (attachScenes) target.attachScene(*op.scene);
         break;
       case VisibilityCall::Kind::SetPoses:
         target.setPoses(op.poses);

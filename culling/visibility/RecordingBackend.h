@@ -54,8 +54,8 @@ class RecordingBackend final : public VisibilityBackend {
 
 // Issues `ops` again on `target` through the interface. When `answers` is given, each fetch's
 // answers go into the next of its entries (resized to the number of fetches), else they are
-// discarded.
+// discarded. Without `attachScenes`, AttachScene calls are left out (the target has the scene).
 void replayOps(VisibilityBackend& target, std::span<const VisibilityCall> ops,
-               std::vector<std::vector<std::uint8_t>>* answers = nullptr);
+               std::vector<std::vector<std::uint8_t>>* answers = nullptr, bool attachScenes = true);
 
 }  // namespace cdb
