@@ -8,7 +8,10 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <deque>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <span>
 #include <tuple>
@@ -195,6 +198,38 @@ int solidWinding(const Mesh& mesh) {
                       }
                     });
   return apart.load() ? sign : 0;
+}
+
+namespace {
+
+template <class T>
+bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+}  // namespace
+
+int rememberedSolidWinding(const Mesh& mesh) {
+  struct Remembered {
+    std::vector<Eigen::Vector3f> vertices;
+    std::vector<Triangle> triangles;
+    int winding = 0;
+  };
+  static std::mutex mutex;
+  static std::deque<Remembered> recent;  // newest first
+  constexpr std::size_t kRemembered = 16;
+  {
+    const std::lock_guard lock(mutex);
+    for (const Remembered& r : recent)
+      if (sameBits(r.vertices, mesh.vertices) && sameBits(r.triangles, mesh.triangles))
+        return r.winding;
+  }
+  const int winding = solidWinding(mesh);
+  const std::lock_guard lock(mutex);
+  recent.push_front({mesh.vertices, mesh.triangles, winding});
+  if (recent.size() > kRemembered) recent.pop_back();
+  return winding;
 }
 
 }  // namespace cdb

@@ -151,5 +151,23 @@ TEST(SolidWinding, CoplanarNeighbours) {
   EXPECT_EQ(solidWinding(makeTorus(0.5, 0.2, 30, 12)), 1);
 }
 
+// The remembered answers are those of the mesh asked, bit for bit: the same counts with one corner
+// moved are another mesh.
+TEST(SolidWinding, RememberedAnswersAreTheMeshAsked) {
+  const Mesh box = boxMeshAt({0, 0, 0}, {1, 1, 1}, true);
+  Mesh crossed = box;
+  for (Eigen::Vector3f& v : crossed.vertices)
+    if (v.z() > 0) v.x() = -0.5f * v.x();
+  for (int round = 0; round < 2; ++round) {
+    EXPECT_EQ(rememberedSolidWinding(box), 1);
+    EXPECT_EQ(rememberedSolidWinding(crossed), 0);
+    EXPECT_EQ(rememberedSolidWinding(reversed(box)), -1);
+  }
+  // More meshes than are remembered, then the first again.
+  for (int sides = 3; sides < 25; ++sides)
+    EXPECT_EQ(rememberedSolidWinding(makeTorus(0.5, 0.2, 8, sides)), 1) << sides << " sides";
+  EXPECT_EQ(rememberedSolidWinding(crossed), 0);
+}
+
 }  // namespace
 }  // namespace cdb

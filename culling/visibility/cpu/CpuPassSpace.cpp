@@ -36,6 +36,8 @@ ScreenMatrix worldToKeyOf(const DepthPassSetup& setup) {
   return m;
 }
 
-std::int8_t meshWinding(const Mesh& mesh) { return static_cast<std::int8_t>(solidWinding(mesh)); }
+std::int8_t meshWinding(const Mesh& mesh) {
+  return static_cast<std::int8_t>(rememberedSolidWinding(mesh));
+}
 
 }  // namespace cdb
