@@ -215,10 +215,15 @@ int rememberedSolidWinding(const Mesh& mesh) {
     std::vector<Eigen::Vector3f> vertices;
     std::vector<Triangle> triangles;
     int winding = 0;
+    [[nodiscard]] std::size_t bytes() const {
+      return vertices.size() * sizeof(Eigen::Vector3f) + triangles.size() * sizeof(Triangle);
+    }
   };
   static std::mutex mutex;
   static std::deque<Remembered> recent;  // newest first
-  constexpr std::size_t kRemembered = 16;
+  static std::size_t recentBytes = 0;
+  // At most 16 meshes and 64 MiB of copies (a mesh larger than that is checked at every attach).
+  constexpr std::size_t kMostMeshes = 16, kMostBytes = std::size_t{64} << 20;
   {
     const std::lock_guard lock(mutex);
     for (const Remembered& r : recent)
@@ -226,9 +231,17 @@ int rememberedSolidWinding(const Mesh& mesh) {
         return r.winding;
   }
   const int winding = solidWinding(mesh);
+  if (mesh.vertices.size() * sizeof(Eigen::Vector3f) + mesh.triangles.size() * sizeof(Triangle) >
+      kMostBytes)
+    return winding;
+  Remembered kept{mesh.vertices, mesh.triangles, winding};
   const std::lock_guard lock(mutex);
-  recent.push_front({mesh.vertices, mesh.triangles, winding});
-  if (recent.size() > kRemembered) recent.pop_back();
+  recentBytes += kept.bytes();
+  recent.push_front(std::move(kept));
+  while (recent.size() > kMostMeshes || recentBytes > kMostBytes) {
+    recentBytes -= recent.back().bytes();
+    recent.pop_back();
+  }
   return winding;
 }
 
