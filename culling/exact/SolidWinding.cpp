@@ -222,8 +222,10 @@ int rememberedSolidWinding(const Mesh& mesh) {
   static std::mutex mutex;
   static std::deque<Remembered> recent;  // newest first
   static std::size_t recentBytes = 0;
-  // At most 16 meshes and 64 MiB of copies (a mesh larger than that is checked at every attach).
-  constexpr std::size_t kMostMeshes = 16, kMostBytes = std::size_t{64} << 20;
+  // At most 1,024 meshes and 64 MiB of copies (a mesh larger than that is checked at every
+  // attach). A scene of many small meshes attached again and again (a test's 40 spheres) needs
+  // them all; a lookup compares sizes first.
+  constexpr std::size_t kMostMeshes = 1024, kMostBytes = std::size_t{64} << 20;
   {
     const std::lock_guard lock(mutex);
     for (const Remembered& r : recent)

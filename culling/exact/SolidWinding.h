@@ -25,9 +25,9 @@ namespace cdb {
 // parts that overlap, a collapsed triangle.
 [[nodiscard]] int solidWinding(const Mesh& mesh);
 
-// solidWinding, answered again without the check for a mesh bit for bit like one of the last 16
-// asked (64 MiB of copies at most; a backend attaches the same meshes for every cell of a run, and
-// tests attach them hundreds of times). Thread-safe.
+// solidWinding, answered again without the check for a mesh bit for bit like one of the last
+// 1,024 asked (64 MiB of copies at most; a backend attaches the same meshes for every cell of a
+// run, and tests attach them hundreds of times). Thread-safe.
 [[nodiscard]] int rememberedSolidWinding(const Mesh& mesh);
 
 // Whether two triangles, given by their corners' indices into `at` (a corner they share has one

@@ -163,7 +163,7 @@ TEST(SolidWinding, RememberedAnswersAreTheMeshAsked) {
     EXPECT_EQ(rememberedSolidWinding(crossed), 0);
     EXPECT_EQ(rememberedSolidWinding(reversed(box)), -1);
   }
-  // More meshes than are remembered, then the first again.
+  // Other meshes in between, then one of the first again.
   for (int sides = 3; sides < 25; ++sides)
     EXPECT_EQ(rememberedSolidWinding(makeTorus(0.5, 0.2, 8, sides)), 1) << sides << " sides";
   EXPECT_EQ(rememberedSolidWinding(crossed), 0);
