@@ -12,6 +12,7 @@
 #include "scenes/ProceduralMeshes.h"
 #include "tests/common/BoxMeshes.h"
 #include "tests/common/RandomCases.h"
+#include "tests/common/SphereMeshes.h"
 
 namespace cdb {
 namespace {
@@ -176,32 +177,13 @@ TEST(SolidWinding, RememberedAnswersAreTheMeshAsked) {
 Mesh jitteredSphere(std::mt19937_64& rng, int rings, int segments, double bump, double jitter,
                     const Eigen::Vector3d& centre, double radius) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Mesh m;
-  const auto vertex = [&](double theta, double phi) {
+  return test::ringSphere(rings, segments, [&](double theta, double phi) -> Eigen::Vector3f {
     const Eigen::Vector3d d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                             std::cos(theta));
     const Eigen::Vector3d p = centre + radius * ((1.0 + bump * u(rng)) * d +
                                                  jitter * Eigen::Vector3d(u(rng), u(rng), u(rng)));
-    m.vertices.push_back(p.cast<float>());
-  };
-  vertex(0, 0);
-  for (int r = 1; r < rings; ++r)
-    for (int k = 0; k < segments; ++k)
-      vertex(std::numbers::pi * r / rings, 2 * std::numbers::pi * k / segments);
-  vertex(std::numbers::pi, 0);
-  const auto at = [&](int r, int k) {
-    return static_cast<std::uint32_t>(1 + (r - 1) * segments + k % segments);
-  };
-  const auto south = static_cast<std::uint32_t>(m.vertices.size() - 1);
-  for (int k = 0; k < segments; ++k) {
-    m.triangles.push_back({0, at(1, k), at(1, k + 1)});
-    for (int r = 1; r + 1 < rings; ++r) {
-      m.triangles.push_back({at(r, k), at(r + 1, k), at(r + 1, k + 1)});
-      m.triangles.push_back({at(r, k), at(r + 1, k + 1), at(r, k + 1)});
-    }
-    m.triangles.push_back({at(rings - 1, k), south, at(rings - 1, k + 1)});
-  }
-  return m;
+    return p.cast<float>();
+  });
 }
 
 // Random closed meshes of one to three jittered spheres, each wound either way, apart or

@@ -14,6 +14,7 @@
 
 #include "core/Errors.h"
 #include "culling/visibility/cpu/CpuRasterBackend.h"
+#include "tests/common/SphereMeshes.h"
 #include "tests/visibility/GlTestSupport.h"
 
 // Helpers in a namespace of their own: unity builds compile test files together.
@@ -26,31 +27,14 @@ namespace {
 Mesh bumpySphere(unsigned seed, int rings, int segments) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> bump(0.7f, 1.0f);
-  Mesh m;
+  Mesh m = test::ringSphere(rings, segments, [&](double theta, double phi) -> Eigen::Vector3f {
+    if (theta == 0.0) return {0.f, 0.f, bump(rng)};                // north pole
+    if (theta == std::numbers::pi) return {0.f, 0.f, -bump(rng)};  // south pole
+    const float radius = bump(rng);
+    return Eigen::Vector3f(radius * std::sin(theta) * std::cos(phi),
+                           radius * std::sin(theta) * std::sin(phi), radius * std::cos(theta));
+  });
   m.name = "bumpy sphere";
-  m.vertices.emplace_back(0.f, 0.f, bump(rng));  // north pole
-  for (int r = 1; r < rings; ++r) {
-    const double theta = std::numbers::pi * r / rings;
-    for (int s = 0; s < segments; ++s) {
-      const double phi = 2 * std::numbers::pi * s / segments;
-      const float radius = bump(rng);
-      m.vertices.emplace_back(radius * std::sin(theta) * std::cos(phi),
-                              radius * std::sin(theta) * std::sin(phi), radius * std::cos(theta));
-    }
-  }
-  m.vertices.emplace_back(0.f, 0.f, -bump(rng));  // south pole
-  const auto at = [&](int ring, int s) {          // ring 1 .. rings - 1
-    return static_cast<std::uint32_t>(1 + (ring - 1) * segments + (s % segments));
-  };
-  const auto south = static_cast<std::uint32_t>(m.vertices.size() - 1);
-  for (int s = 0; s < segments; ++s) {
-    m.triangles.push_back({0, at(1, s), at(1, s + 1)});
-    for (int r = 1; r + 1 < rings; ++r) {
-      m.triangles.push_back({at(r, s), at(r + 1, s), at(r + 1, s + 1)});
-      m.triangles.push_back({at(r, s), at(r + 1, s + 1), at(r, s + 1)});
-    }
-    m.triangles.push_back({at(rings - 1, s), south, at(rings - 1, s + 1)});
-  }
   return m;
 }
 
