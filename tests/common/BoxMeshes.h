@@ -39,4 +39,12 @@ inline Mesh joinedMeshes(const std::vector<Mesh>& parts) {
   return m;
 }
 
+// The tests' closed mesh wound both ways: a box of half size 1 at (5, 0, 0) wound outward and one
+// of half size 0.6 at the origin wound inward (closed, positive volume, winding number -1 inside
+// the small box); with `smallInward` false, both wound outward (a solid).
+inline Mesh boxesWoundBothWays(bool smallInward = true) {
+  return joinedMeshes({boxMeshAt({5, 0, 0}, {1, 1, 1}, true),
+                       boxMeshAt({0, 0, 0}, {0.6f, 0.6f, 0.6f}, !smallInward)});
+}
+
 }  // namespace cdb::test

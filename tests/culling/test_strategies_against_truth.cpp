@@ -84,9 +84,7 @@ std::optional<testing::RandomScene> makeScene(SceneKind kind) {
       // tested at its near side, and CULLIDE's passes along the crossed axis found object 1 fully
       // visible in both: the pair was lost.
       testing::RandomScene s;
-      s.scene.meshes.push_back(
-          test::joinedMeshes({test::boxMeshAt({5, 0, 0}, {1, 1, 1}, true),
-                              test::boxMeshAt({0, 0, 0}, {0.6f, 0.6f, 0.6f}, false)}));
+      s.scene.meshes.push_back(test::boxesWoundBothWays());
       s.scene.meshes.push_back(test::boxMeshAt({0, 0, 0}, {0.3f, 0.3f, 0.2f}, true));
       s.scene.objects.push_back({0, false, "boxes wound both ways"});
       s.scene.objects.push_back({1, false, "box"});

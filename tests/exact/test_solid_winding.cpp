@@ -98,8 +98,7 @@ TEST(SolidWinding, NotShownForOpenMeshes) {
 // A closed mesh whose parts wind both ways: the old rule (closed, positive volume) took it as
 // wound outward, but inside the inverted box its winding number is -1.
 TEST(SolidWinding, PartsWoundBothWaysAreNotASolid) {
-  const Mesh mixed = joinedMeshes(
-      {boxMeshAt({5, 0, 0}, {1, 1, 1}, true), boxMeshAt({0, 0, 0}, {0.6f, 0.6f, 0.6f}, false)});
+  const Mesh mixed = test::boxesWoundBothWays();
   ASSERT_TRUE(isClosedMesh(mixed));
   ASSERT_GT(signedVolume(mixed), 0.0);
   EXPECT_NEAR(windingNumberAt(mixed, {0, 0, 0}), -1.0, 1e-9);

@@ -378,9 +378,7 @@ TEST_P(OcclusionSemantics, BatchOverAWholeClosedMeshAnswersEveryTriangle) {
 // turned toward the viewer for a write would store the far side, behind the wall.
 TEST_P(OcclusionSemantics, AClosedMeshWoundBothWaysAnswersAsEveryTriangleDrawn) {
   for (bool inward : {true, false}) {
-    const Mesh parts =
-        test::joinedMeshes({test::boxMeshAt({5, 0, 0}, {1, 1, 1}, true),
-                            test::boxMeshAt({0, 0, 0}, {0.6f, 0.6f, 0.6f}, !inward)});
+    const Mesh parts = test::boxesWoundBothWays(inward);
     const SceneGeometry scene = test::sceneOf({squareMesh(0, 0, 0, 0.3f), parts});
     backend_->attachScene(scene);
     backend_->setPoses(test::identityPoses(scene.objectCount()));
