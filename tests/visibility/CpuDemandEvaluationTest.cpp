@@ -141,8 +141,9 @@ void expectBothAnswers(const Outcome& outcome) {
 // CULLIDE's draws along each axis (pass 1 tests and writes every object in order, pass 2 in
 // reverse, fresh depth, one fetch), then a triangle level (per member a batch of tests, then its
 // listed triangles written), a pair of depth-sorted passes (one clear, opposite views) and node
-// boxes tested and written in both passes of a view. With `gated`, each pass-2 test is gated by
-// the same piece's pass-1 test, as the strategies gate them (VisibilityBackend::gateAnswers).
+// boxes tested and written in both passes of a view, then in a pair of depth-sorted passes. With
+// `gated`, each pass-2 test of CULLIDE's passes and of the boxes is gated by the same piece's
+// pass-1 test, as the strategies gate them (VisibilityBackend::gateAnswers).
 Stream cullideDraws(const SceneGeometry& scene, int resolution, bool gated = true) {
   return [&scene, resolution, gated](CpuRasterBackend& backend, Outcome& out) {
     const Aabb bounds(Eigen::Vector3d::Constant(-2.5), Eigen::Vector3d::Constant(2.5));
@@ -208,6 +209,18 @@ Stream cullideDraws(const SceneGeometry& scene, int resolution, bool gated = tru
       }
     }
     fetchInto(backend, out);
+    // The same boxes in a pair of depth-sorted passes, as `ours` draws its nodes: recorded again
+    // under the opposite view, pass 2's tests gated by pass 1's.
+    for (int pass = 0; pass < 2; ++pass) {
+      backend.beginPass(pass == 0 ? up : down,
+                        pass == 0 ? DepthUse::SharedFirst : DepthUse::SharedSecond);
+      for (ObjectId i = 0; i < objects; ++i) {
+        const ObjectId o = pass == 0 ? i : objects - 1 - i;
+        gate(pass, o, backend.queryBoxes(o, boxes), boxes.size());
+        backend.writeBoxes(o, boxes);
+      }
+    }
+    fetchInto(backend, out);
     readBuffer(backend, resolution, out);
   };
 }
@@ -260,6 +273,69 @@ TEST(CpuGatedTests, PassTwoSkipsWhatPassOneFoundOccluded) {
     EXPECT_GT(gatedOff, 0) << "no object visible in pass 2 only: nothing to skip";
     EXPECT_GT(gated.counters.tileTestsSkipped, ungated.counters.tileTestsSkipped);
     EXPECT_LT(gated.counters.pixelsTested, ungated.counters.pixelsTested);
+  }
+}
+
+// The gate holds between the same boxes recorded twice, under views looking opposite ways (the
+// passes of depth-sorted culling: `ours` gates its nodes' pass-2 tests so): the gated stream
+// skips tests the ungated one makes, and its pass-2 answers are the ungated ones ANDed with
+// pass 1's.
+TEST(CpuGatedTests, BoxesOfTheOppositeViewKeepTheirGate) {
+  std::vector<Mesh> meshes;
+  for (int o = 0; o < 9; ++o) meshes.push_back(bumpySphere(11 + o, 18 + o % 3, 16));
+  const SceneGeometry scene = test::sceneOf(std::move(meshes));
+  const std::vector<Pose> poses = posesAround(3, scene.objectCount(), 1.2);
+  std::vector<OrientedBox> boxes(30);
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    boxes[b].center = Eigen::Vector3d(0.05 * b - 0.7, -0.2 + 0.01 * b, 0.01 * b);
+    boxes[b].halfExtents = Eigen::Vector3d(0.08, 0.05 + 0.004 * b, 0.06);
+  }
+  const auto draws = [&](bool gated) -> Stream {
+    return [&, gated](CpuRasterBackend& backend, Outcome& out) {
+      const Aabb bounds(Eigen::Vector3d::Constant(-2.5), Eigen::Vector3d::Constant(2.5));
+      const auto objects = static_cast<ObjectId>(scene.objectCount());
+      for (int axis = 0; axis < 3; ++axis) {
+        const ViewSpec view{Eigen::Vector3d::Unit(axis), bounds, 96};
+        ViewSpec opposite = view;
+        opposite.direction = -view.direction;
+        std::vector<QueryIndex> first(objects);
+        backend.beginPass(view, DepthUse::SharedFirst);
+        for (ObjectId o = 0; o < objects; ++o) {
+          first[o] = backend.queryBoxes(o, boxes);
+          backend.writeBoxes(o, boxes);
+        }
+        backend.beginPass(opposite, DepthUse::SharedSecond);
+        for (ObjectId o = objects; o-- > 0;) {
+          const QueryIndex q = backend.queryBoxes(o, boxes);
+          if (gated) backend.gateAnswers(q, first[o], static_cast<std::uint32_t>(boxes.size()));
+          backend.writeBoxes(o, boxes);
+        }
+        fetchInto(backend, out);
+      }
+    };
+  };
+  for (int threads : {1, 2}) {
+    SCOPED_TRACE(testing::Message() << threads << " threads");
+    const Outcome gated = run(scene, poses, draws(true), true, CpuEvaluation{}, threads);
+    const Outcome ungated = run(scene, poses, draws(false), true, CpuEvaluation{}, threads);
+    const std::size_t n = scene.objectCount() * boxes.size();
+    int gatedOff = 0;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      const auto& g = gated.answers[axis];
+      const auto& u = ungated.answers[axis];
+      ASSERT_EQ(g.size(), 2 * n);
+      // Pass 2 asks the objects in reverse order, each object's boxes in their own order.
+      for (std::size_t o = 0; o < scene.objectCount(); ++o)
+        for (std::size_t b = 0; b < boxes.size(); ++b) {
+          const std::size_t one = o * boxes.size() + b;
+          const std::size_t two = n + (scene.objectCount() - 1 - o) * boxes.size() + b;
+          EXPECT_EQ(g[one], u[one]) << "pass 1, object " << o << ", box " << b;
+          EXPECT_EQ(g[two], u[two] && u[one]) << "pass 2, object " << o << ", box " << b;
+          gatedOff += u[two] && !u[one];
+        }
+    }
+    EXPECT_GT(gatedOff, 0) << "no box visible in pass 2 only: nothing to skip";
+    EXPECT_GT(gated.counters.tileTestsSkipped, ungated.counters.tileTestsSkipped);
   }
 }
 

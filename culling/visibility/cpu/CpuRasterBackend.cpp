@@ -343,9 +343,16 @@ void CpuRasterBackend::gateSet(QueryIndex gated, QueryIndex gate, std::uint32_t 
   const CpuCommand& g = recording.commands[gateAt];
   const auto answersOf = [](const CpuCommand& x) { return x.answerEach ? x.count : 1u; };
   // The same pieces in the same order: the same object's mesh, list entries or boxes (a command
-  // drawing what an earlier one drew shares its `first`), each answering alike, all gated.
-  const bool same = c.object == g.object && c.source == g.source && c.first == g.first &&
-                    c.count == g.count && c.answerEach == g.answerEach;
+  // drawing what an earlier one drew shares its `first`; boxes recorded again under another
+  // matrix, as by the passes of depth-sorted culling, which look opposite ways, are compared bit
+  // for bit), each answering alike, all gated.
+  const auto sameBoxes = [&] {
+    return c.source == CpuCommand::Source::Boxes &&
+           std::memcmp(recording.boxes.data() + c.first, recording.boxes.data() + g.first,
+                       std::size_t{c.count} * sizeof(OrientedBox)) == 0;
+  };
+  const bool same = c.object == g.object && c.source == g.source && c.count == g.count &&
+                    c.answerEach == g.answerEach && (c.first == g.first || sameBoxes());
   if (!same || answersOf(c) != count) return;
   c.gateCommand = gateAt;
   c.gateBack = gated - gate;
