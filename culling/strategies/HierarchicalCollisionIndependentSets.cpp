@@ -13,7 +13,10 @@
 //    sets, the objects that may collide, are the ones whose nodes most need pruning; and since
 //    pass 2 then no longer depends on pass 1's answers, every set of a level is drawn before one
 //    fetch, instead of two synchronisations per set. The construction reads pass 2's answers
-//    only where Algorithm 3.2 would have tested.
+//    only where Algorithm 3.2 would have tested, and node pruning only where pass 1 found the
+//    node visible: so a node's pass-2 answer is fetched ANDed with its pass-1 answer (gated,
+//    VisibilityBackend::gateAnswers), and a backend need not test it where pass 1 found it
+//    occluded, as Algorithm 3.2 does not.
 //  - A node is pruned when fully visible in both passes: pass 1 tests it against every object of
 //    farther Min in the set, pass 2 against every one of nearer Min, so its triangles touch no
 //    other object's of the set; objects outside the set cannot touch them (earlier levels' sets).
@@ -97,6 +100,24 @@ void HierarchicalCollisionIndependentSets::drawSet(SetRun& run, std::uint32_t le
     return pass == 0 ? iv : std::pair<double, double>{-iv.second, -iv.first};
   };
   constexpr double kInf = std::numeric_limits<double>::infinity();
+  // Which nodes each pass queries, known before either is drawn.
+  for (int pass = 0; pass < 2; ++pass) {
+    auto slotAt = [&](std::size_t k) { return order[pass == 0 ? k : n - 1 - k]; };
+    queriedIn_[pass].assign(run.nodeIntervals.size(), 0);
+    double earlierNear = kInf;
+    double earlierFar = -kInf;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t slot = slotAt(k);
+      for (std::uint32_t at = run.firstNode[slot]; at < run.firstNode[slot + 1]; ++at) {
+        const auto d = depthOf(pass, run.nodeIntervals[at]);
+        queriedIn_[pass][at] = d.second >= earlierNear && d.first <= earlierFar;
+      }
+      const auto d = depthOf(pass, intervals_[slot]);
+      earlierNear = std::min(earlierNear, d.first);
+      earlierFar = std::max(earlierFar, d.second);
+    }
+  }
+  bothFirst_.assign(n, kNotQueried);
   ViewSpec view{direction, bounds, options_.resolution};
   for (int pass = 0; pass < 2; ++pass) {
     auto slotAt = [&](std::size_t k) { return order[pass == 0 ? k : n - 1 - k]; };
@@ -110,29 +131,35 @@ void HierarchicalCollisionIndependentSets::drawSet(SetRun& run, std::uint32_t le
     }
     backend_->beginPass(view, pass == 0 ? DepthUse::SharedFirst : DepthUse::SharedSecond);
     run.query[pass].assign(run.nodeIntervals.size(), kNotQueried);
-    double earlierNear = kInf;
-    double earlierFar = -kInf;
     for (std::size_t k = 0; k < n; ++k) {
       const std::uint32_t slot = slotAt(k);
       const ObjectId o = run.objects[slot];
       const auto nodes = frontier_.nodes(o);
-      // Every node queried before any is written, in one batch: an object does not occlude
-      // itself.
-      batchBoxes_.clear();
-      batchNodes_.clear();
-      for (std::size_t j = 0; j < nodes.size(); ++j) {
-        const std::size_t at = run.firstNode[slot] + j;
-        const auto d = depthOf(pass, run.nodeIntervals[at]);
-        if (d.second >= earlierNear && d.first <= earlierFar) {
-          batchBoxes_.push_back(frontier_.box(o, nodes[j]));
-          batchNodes_.push_back(at);
-        } else {
-          ++stats_.queriesSkipped;
+      // Every node queried before any is written: an object does not occlude itself. The nodes
+      // both passes query come first, as one batch of the same boxes in both: a node is kept
+      // unless visible in both passes, and the sets read pass 2 only of objects fully visible in
+      // pass 1, so pass 2's answers of them are gated by pass 1's (gateAnswers), and a backend
+      // need not test in pass 2 what pass 1 found occluded. Then the nodes of this pass alone.
+      for (const bool both : {true, false}) {
+        batchBoxes_.clear();
+        batchNodes_.clear();
+        for (std::size_t j = 0; j < nodes.size(); ++j) {
+          const std::size_t at = run.firstNode[slot] + j;
+          if (queriedIn_[pass][at] && queriedIn_[1 - pass][at] == both) {
+            batchBoxes_.push_back(frontier_.box(o, nodes[j]));
+            batchNodes_.push_back(at);
+          } else if (both && !queriedIn_[pass][at]) {
+            ++stats_.queriesSkipped;
+          }
         }
+        const QueryIndex first = backend_->queryBoxes(o, batchBoxes_);
+        for (std::size_t i = 0; i < batchNodes_.size(); ++i)
+          run.query[pass][batchNodes_[i]] = first + static_cast<QueryIndex>(i);
+        if (both && pass == 0) bothFirst_[slot] = first;
+        if (both && pass == 1 && !batchNodes_.empty())
+          backend_->gateAnswers(first, bothFirst_[slot],
+                                static_cast<std::uint32_t>(batchNodes_.size()));
       }
-      const QueryIndex first = backend_->queryBoxes(o, batchBoxes_);
-      for (std::size_t i = 0; i < batchNodes_.size(); ++i)
-        run.query[pass][batchNodes_[i]] = first + static_cast<QueryIndex>(i);
       batchBoxes_.clear();
       for (std::size_t j = 0; j < nodes.size(); ++j) {
         const auto d = depthOf(pass, run.nodeIntervals[run.firstNode[slot] + j]);
@@ -142,9 +169,6 @@ void HierarchicalCollisionIndependentSets::drawSet(SetRun& run, std::uint32_t le
           ++stats_.writesSkipped;
       }
       backend_->writeBoxes(o, batchBoxes_);
-      const auto d = depthOf(pass, intervals_[slot]);
-      earlierNear = std::min(earlierNear, d.first);
-      earlierFar = std::max(earlierFar, d.second);
     }
     view.direction = -direction;
   }

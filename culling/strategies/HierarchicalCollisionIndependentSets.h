@@ -105,6 +105,10 @@ class HierarchicalCollisionIndependentSets final : public CullingStrategy {
   std::vector<double> laterFar_;
   std::vector<OrientedBox> batchBoxes_;  // one object's boxes queried (or written) at once
   std::vector<std::size_t> batchNodes_;  // where each queried box's answer goes
+  // Per node of a set (SetRun::nodeIntervals): whether pass 1 and pass 2 query it.
+  std::array<std::vector<std::uint8_t>, 2> queriedIn_;
+  // Per slot: pass 1's answer of the first of its nodes both passes query (their batch).
+  std::vector<QueryIndex> bothFirst_;
 };
 
 }  // namespace cdb
