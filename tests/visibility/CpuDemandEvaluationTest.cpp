@@ -138,6 +138,23 @@ void expectBothAnswers(const Outcome& outcome) {
   }
 }
 
+// Nine bumpy spheres of 18-20 rings (the scene of CULLIDE's draws below).
+SceneGeometry bumpySpheres() {
+  std::vector<Mesh> meshes;
+  for (int o = 0; o < 9; ++o) meshes.push_back(bumpySphere(11 + o, 18 + o % 3, 16));
+  return test::sceneOf(std::move(meshes));
+}
+
+// Thirty boxes in a slanted row across an object, overlapping: its hierarchy nodes, as drawn.
+std::vector<OrientedBox> nodeBoxes() {
+  std::vector<OrientedBox> boxes(30);
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    boxes[b].center = Eigen::Vector3d(0.05 * b - 0.7, -0.2 + 0.01 * b, 0.01 * b);
+    boxes[b].halfExtents = Eigen::Vector3d(0.08, 0.05 + 0.004 * b, 0.06);
+  }
+  return boxes;
+}
+
 // CULLIDE's draws along each axis (pass 1 tests and writes every object in order, pass 2 in
 // reverse, fresh depth, one fetch), then a triangle level (per member a batch of tests, then its
 // listed triangles written), a pair of depth-sorted passes (one clear, opposite views) and node
@@ -195,11 +212,7 @@ Stream cullideDraws(const SceneGeometry& scene, int resolution, bool gated = tru
       backend.writeRange(test::wholeOf(scene, o));
     }
     fetchInto(backend, out);
-    std::vector<OrientedBox> boxes(30);
-    for (std::size_t b = 0; b < boxes.size(); ++b) {
-      boxes[b].center = Eigen::Vector3d(0.05 * b - 0.7, -0.2 + 0.01 * b, 0.01 * b);
-      boxes[b].halfExtents = Eigen::Vector3d(0.08, 0.05 + 0.004 * b, 0.06);
-    }
+    const std::vector<OrientedBox> boxes = nodeBoxes();
     for (int pass = 0; pass < 2; ++pass) {
       backend.beginPass(up, DepthUse::Fresh);
       for (ObjectId i = 0; i < objects; ++i) {
@@ -226,9 +239,7 @@ Stream cullideDraws(const SceneGeometry& scene, int resolution, bool gated = tru
 }
 
 TEST_P(CpuDemandEvaluation, CullideDrawsAnswerAsPlainEvaluation) {
-  std::vector<Mesh> meshes;
-  for (int o = 0; o < 9; ++o) meshes.push_back(bumpySphere(11 + o, 18 + o % 3, 16));
-  const SceneGeometry scene = test::sceneOf(std::move(meshes));
+  const SceneGeometry scene = bumpySpheres();
   const std::vector<Pose> poses = posesAround(3, scene.objectCount(), 1.2);
   for (bool conservative : {true, false})
     for (int resolution : {64, 201}) {
@@ -244,9 +255,7 @@ TEST_P(CpuDemandEvaluation, CullideDrawsAnswerAsPlainEvaluation) {
 // the early-out, the gated stream tests fewer pieces and pixels than the same stream ungated, and
 // its pass-2 answers are the ungated ones ANDed with pass 1's.
 TEST(CpuGatedTests, PassTwoSkipsWhatPassOneFoundOccluded) {
-  std::vector<Mesh> meshes;
-  for (int o = 0; o < 9; ++o) meshes.push_back(bumpySphere(11 + o, 18 + o % 3, 16));
-  const SceneGeometry scene = test::sceneOf(std::move(meshes));
+  const SceneGeometry scene = bumpySpheres();
   const std::vector<Pose> poses = posesAround(3, scene.objectCount(), 1.2);
   const CpuEvaluation demand{};
   for (int threads : {1, 2}) {
@@ -281,15 +290,9 @@ TEST(CpuGatedTests, PassTwoSkipsWhatPassOneFoundOccluded) {
 // skips tests the ungated one makes, and its pass-2 answers are the ungated ones ANDed with
 // pass 1's.
 TEST(CpuGatedTests, BoxesOfTheOppositeViewKeepTheirGate) {
-  std::vector<Mesh> meshes;
-  for (int o = 0; o < 9; ++o) meshes.push_back(bumpySphere(11 + o, 18 + o % 3, 16));
-  const SceneGeometry scene = test::sceneOf(std::move(meshes));
+  const SceneGeometry scene = bumpySpheres();
   const std::vector<Pose> poses = posesAround(3, scene.objectCount(), 1.2);
-  std::vector<OrientedBox> boxes(30);
-  for (std::size_t b = 0; b < boxes.size(); ++b) {
-    boxes[b].center = Eigen::Vector3d(0.05 * b - 0.7, -0.2 + 0.01 * b, 0.01 * b);
-    boxes[b].halfExtents = Eigen::Vector3d(0.08, 0.05 + 0.004 * b, 0.06);
-  }
+  const std::vector<OrientedBox> boxes = nodeBoxes();
   const auto draws = [&](bool gated) -> Stream {
     return [&, gated](CpuRasterBackend& backend, Outcome& out) {
       const Aabb bounds(Eigen::Vector3d::Constant(-2.5), Eigen::Vector3d::Constant(2.5));
