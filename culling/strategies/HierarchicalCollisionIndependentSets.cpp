@@ -99,15 +99,16 @@ void HierarchicalCollisionIndependentSets::drawSet(SetRun& run, std::uint32_t le
   auto depthOf = [](int pass, std::pair<double, double> iv) {
     return pass == 0 ? iv : std::pair<double, double>{-iv.second, -iv.first};
   };
+  // The slot drawn k-th in a pass.
+  auto slotAt = [&](int pass, std::size_t k) { return order[pass == 0 ? k : n - 1 - k]; };
   constexpr double kInf = std::numeric_limits<double>::infinity();
   // Which nodes each pass queries, known before either is drawn.
   for (int pass = 0; pass < 2; ++pass) {
-    auto slotAt = [&](std::size_t k) { return order[pass == 0 ? k : n - 1 - k]; };
     queriedIn_[pass].assign(run.nodeIntervals.size(), 0);
     double earlierNear = kInf;
     double earlierFar = -kInf;
     for (std::size_t k = 0; k < n; ++k) {
-      const std::uint32_t slot = slotAt(k);
+      const std::uint32_t slot = slotAt(pass, k);
       for (std::uint32_t at = run.firstNode[slot]; at < run.firstNode[slot + 1]; ++at) {
         const auto d = depthOf(pass, run.nodeIntervals[at]);
         queriedIn_[pass][at] = d.second >= earlierNear && d.first <= earlierFar;
@@ -120,19 +121,18 @@ void HierarchicalCollisionIndependentSets::drawSet(SetRun& run, std::uint32_t le
   bothFirst_.assign(n, kNotQueried);
   ViewSpec view{direction, bounds, options_.resolution};
   for (int pass = 0; pass < 2; ++pass) {
-    auto slotAt = [&](std::size_t k) { return order[pass == 0 ? k : n - 1 - k]; };
     // Nearest near end and farthest far end of the objects drawn after position k.
     laterNear_.assign(n, kInf);
     laterFar_.assign(n, -kInf);
     for (std::size_t k = n - 1; k-- > 0;) {
-      const auto d = depthOf(pass, intervals_[slotAt(k + 1)]);
+      const auto d = depthOf(pass, intervals_[slotAt(pass, k + 1)]);
       laterNear_[k] = std::min(laterNear_[k + 1], d.first);
       laterFar_[k] = std::max(laterFar_[k + 1], d.second);
     }
     backend_->beginPass(view, pass == 0 ? DepthUse::SharedFirst : DepthUse::SharedSecond);
     run.query[pass].assign(run.nodeIntervals.size(), kNotQueried);
     for (std::size_t k = 0; k < n; ++k) {
-      const std::uint32_t slot = slotAt(k);
+      const std::uint32_t slot = slotAt(pass, k);
       const ObjectId o = run.objects[slot];
       const auto nodes = frontier_.nodes(o);
       // Every node queried before any is written: an object does not occlude itself. The nodes
