@@ -94,7 +94,8 @@ std::optional<testing::RandomScene> makeScene(SceneKind kind) {
         p.rotation = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis);
         return p;
       };
-      for (const Eigen::Vector3d& axis :
+      // (By value: the list holds Eigen's unit-vector expressions, each made a vector here.)
+      for (const Eigen::Vector3d axis :
            {Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()})
         s.frames.push_back({Pose{}, rotated(-0.6 * axis, axis)});
       return s;
