@@ -47,7 +47,7 @@ TEST(GroundTruth, MatchesBruteForceOnSmallToriScenes) {
 TEST(GroundTruth, MatchesBruteForceWithMixedMeshes) {
   auto s = testing::randomTori(6, 1.5, 4, 77, 10, 6);
   s.scene.meshes.push_back(testing::unitCube());
-  s.scene.meshes.push_back(Mesh{"empty", {}, {}});
+  s.scene.meshes.push_back(Mesh{"empty", {}, {}, {}});
   s.scene.objects.push_back({1, false, "cube"});
   s.scene.objects.push_back({1, true, "cube"});
   s.scene.objects.push_back({2, false, "empty"});
