@@ -14,8 +14,8 @@
 #   quick (default): one simulation per cell group, every 10th frame (30 frames spread over each
 #     simulation). About 5 minutes on 2 cores (324 s at 4c56337, with an incremental build).
 #   standard: the thesis' 10 simulations per cell group, every 5th frame (60 frames each), for the
-#     thesis' three strategies; quick_cullide, which is not in the thesis' tables and costs as much
-#     as cullide, on the first 3 of them. Then the other backends on a subset, 2 simulations each
+#     thesis' three strategies and the reference rows; quick_cullide and cullide_oi, which are not
+#     in the thesis' tables and each cost about as much as cullide, on the first 3 of them. Then the other backends on a subset, 2 simulations each
 #     (gl-flags: env1 at 500 px and env3 at 50 and 125 objects, every 15th frame; gl-queries, whose
 #     occlusion queries cost ~15 us each on llvmpipe: env1 at 500 px and env3 at 50 and 100
 #     objects, every 30th frame), on the same simulations (same seeds), for the report's "what
@@ -87,7 +87,7 @@ done
 
 case "$profile" in
   quick) common=(--repeats 1 --frame-stride 10) ;;
-  standard) common=(--repeats 10 --frame-stride 5 --strategy-repeats quick_cullide=3) ;;
+  standard) common=(--repeats 10 --frame-stride 5 --strategy-repeats quick_cullide=3,cullide_oi=3) ;;
   full) common=() ;;
 esac
 
