@@ -202,13 +202,13 @@ def _per_frame_figure(cmp, slice_, name, strategies, heading):
     reader sees whether the drawn simulation is typical."""
     resolution, objects, repeat = slice_
     fig, ax = plt.subplots(figsize=(10, 5))
-    values, frames, repeats = [], 0, 1
+    values, frames, repeats = [], 0, {}   # repeats: strategy -> how many its band is over
     for strategy in strategies:
         rows = _frames_of(cmp, slice_, strategy)
         c = colour(strategy, cmp.strategies)
         spread = _over_repeats(cmp, slice_, strategy)
         if spread is not None:
-            x, mean, low, high, repeats = spread[0], spread[1], spread[2], spread[3], max(repeats, spread[4])
+            x, mean, low, high, repeats[strategy] = spread
             ax.fill_between(x, low, high, color=c, alpha=0.15, linewidth=0)
             ax.plot(x, mean, color=c, linewidth=1, linestyle=":")
             values += list(low) + list(high)
@@ -224,18 +224,32 @@ def _per_frame_figure(cmp, slice_, name, strategies, heading):
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.grid(True, alpha=0.3)
     handles, labels = ax.get_legend_handles_labels()
-    if repeats > 1:
+    over = _repeats_text(repeats)
+    if over:
         handles += [Line2D([], [], color="gray", linestyle=":"), Patch(color="gray", alpha=0.15)]
-        labels += [f"mean over {repeats} repeats", "range over repeats"]
+        labels += [f"mean over {over.replace(' (', chr(10) + '(')}", "range over repeats"]
     ax.legend(handles, labels, fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))   # beside: noisy lines fill it
     title = f"{cmp.run.name}: {heading}, {resolution}x{resolution} pixels, {objects} objects, repeat {repeat}"
     ax.set_title(title, fontsize=11)
     _caption(fig, cmp, False)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     _save(fig, cmp.run.folder, name)
-    over = f"; mean and range over {repeats} repeats" if repeats > 1 else ""
     return Figure(name, title, f"{heading} at {resolution}x{resolution}, {objects} objects, "
-                               f"repeat {repeat} ({frames} frames){over}")
+                               f"repeat {repeat} ({frames} frames)" + (f"; mean and range over {over}" if over else ""))
+
+
+def _repeats_text(repeats):
+    """How many repeats the bands are over, from {strategy: count}: "10 repeats", or where strategies were
+    measured on fewer (--strategy-repeats) "10 repeats (3 for quick_cullide, cullide_oi)"; "" for none."""
+    if not repeats:
+        return ""
+    most = max(repeats.values())
+    fewer = {}
+    for strategy, n in repeats.items():
+        if n < most:
+            fewer.setdefault(n, []).append(strategy)
+    detail = "; ".join(f"{n} for {', '.join(names)}" for n, names in sorted(fewer.items(), reverse=True))
+    return f"{most} repeats" + (f" ({detail})" if detail else "")
 
 
 def _sets_figure(cmp, slice_, name, strategies):
