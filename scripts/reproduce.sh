@@ -15,13 +15,13 @@
 #     simulation). About 5 minutes on 2 cores (324 s at 4c56337, with an incremental build).
 #   standard: the thesis' 10 simulations per cell group, every 5th frame (60 frames each), for the
 #     thesis' three strategies and the reference rows; quick_cullide and cullide_oi, which are not
-#     in the thesis' tables and each cost about as much as cullide, on the first 3 of them. Then the other backends on a subset, 2 simulations each
-#     (gl-flags: env1 at 500 px and env3 at 50 and 125 objects, every 15th frame; gl-queries, whose
-#     occlusion queries cost ~15 us each on llvmpipe: env1 at 500 px and env3 at 50 and 100
-#     objects, every 30th frame), on the same simulations (same seeds), for the report's "what
-#     depends on the cost model". The other backends' runs leave the reference rows out: the report
-#     takes them from the primary's run of the same simulations and frames. Within 90 minutes on 2
-#     cores, build included.
+#     in the thesis' tables and each cost about as much as cullide, on the first 3 of them. Then
+#     the other backends on a subset, 2 simulations each (gl-flags: env1 at 500 px and env3 at 50
+#     and 125 objects, every 15th frame; gl-queries, whose occlusion queries cost ~15 us each on
+#     llvmpipe: env1 at 500 px and env3 at 50 and 100 objects, every 30th frame), on the same
+#     simulations (same seeds), for the report's "what depends on the cost model". The other
+#     backends' runs leave the reference rows out: the report takes them from the primary's run of
+#     the same simulations and frames. Within 90 minutes on 2 cores, build included.
 #   full: the thesis' protocol, 10 simulations, every frame (split it into shards on a cluster:
 #     README "Beyond one machine").
 # quick and standard then run the precision study on the frames they recorded
