@@ -224,10 +224,10 @@ def _per_frame_figure(cmp, slice_, name, strategies, heading):
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.grid(True, alpha=0.3)
     handles, labels = ax.get_legend_handles_labels()
-    over = _repeats_text(repeats)
-    if over:
+    most, fewer = _band_repeats(repeats)
+    if most:
         handles += [Line2D([], [], color="gray", linestyle=":"), Patch(color="gray", alpha=0.15)]
-        labels += [f"mean over {over.replace(' (', chr(10) + '(')}", "range over repeats"]
+        labels += [f"mean over {most} repeats" + (f"\n({fewer})" if fewer else ""), "range over repeats"]
     ax.legend(handles, labels, fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))   # beside: noisy lines fill it
     title = f"{cmp.run.name}: {heading}, {resolution}x{resolution} pixels, {objects} objects, repeat {repeat}"
     ax.set_title(title, fontsize=11)
@@ -235,21 +235,22 @@ def _per_frame_figure(cmp, slice_, name, strategies, heading):
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     _save(fig, cmp.run.folder, name)
     return Figure(name, title, f"{heading} at {resolution}x{resolution}, {objects} objects, "
-                               f"repeat {repeat} ({frames} frames)" + (f"; mean and range over {over}" if over else ""))
+                               f"repeat {repeat} ({frames} frames)"
+                  + (f"; mean and range over {most} repeats" + (f" ({fewer})" if fewer else "") if most else ""))
 
 
-def _repeats_text(repeats):
-    """How many repeats the bands are over, from {strategy: count}: "10 repeats", or where strategies were
-    measured on fewer (--strategy-repeats) "10 repeats (3 for quick_cullide, cullide_oi)"; "" for none."""
+def _band_repeats(repeats):
+    """(most, fewer) from {strategy: how many repeats its band is over}: the largest count (0 for no band)
+    and, for strategies measured on fewer (--strategy-repeats), e.g. "3 for quick_cullide, cullide_oi"
+    ("" when all have the largest)."""
     if not repeats:
-        return ""
+        return 0, ""
     most = max(repeats.values())
     fewer = {}
     for strategy, n in repeats.items():
         if n < most:
             fewer.setdefault(n, []).append(strategy)
-    detail = "; ".join(f"{n} for {', '.join(names)}" for n, names in sorted(fewer.items(), reverse=True))
-    return f"{most} repeats" + (f" ({detail})" if detail else "")
+    return most, "; ".join(f"{n} for {', '.join(names)}" for n, names in sorted(fewer.items(), reverse=True))
 
 
 def _sets_figure(cmp, slice_, name, strategies):
