@@ -20,6 +20,7 @@
 
 #include "core/Errors.h"
 #include "core/Fnv1a.h"
+#include "scenes/InMemoryMeshFile.h"
 #include "scenes/PlyCanonical.h"
 
 namespace cdb {
@@ -322,19 +323,13 @@ std::optional<std::string> canonicalIfPly(const std::filesystem::path& file) {
   return canonicalIfPly(start + rest.str(), file.extension().string(), file.string());
 }
 
-// assimp 5.2's OBJ importer crashes on a material library statement when it reads from memory (it
-// opens the library through its memory file system). Collision detection needs no materials, and
-// from memory there is no library to open, so such statements become comments.
-std::string withoutMaterialLibraries(std::string_view obj) {
-  std::string out(obj);
-  for (std::size_t line = 0; line < out.size();) {
-    const std::size_t token = out.find_first_not_of(" \t", line);
-    if (token != std::string::npos && out.compare(token, 6, "mtllib") == 0) out[token] = '#';
-    const std::size_t next = out.find('\n', line);
-    if (next == std::string::npos) break;
-    line = next + 1;
-  }
-  return out;
+// Reads `bytes` as a mesh file of the format `hint` names (lower case; empty: assimp guesses it
+// from the content). The importer sees that file only (InMemoryMeshFile.h).
+const aiScene* readFromMemory(Assimp::Importer& importer, std::span<const std::byte> bytes,
+                              const std::string& hint) {
+  const std::string file = hint.empty() ? "mesh" : "mesh." + hint;
+  importer.SetIOHandler(new InMemoryMeshFile(file, bytes));  // the importer deletes it
+  return importer.ReadFile(file, 0);
 }
 
 // The importer's scene, checked, then triangulated. MeshMerger joins vertices by position itself,
@@ -361,7 +356,7 @@ LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& op
   Assimp::Importer importer;
   const aiScene* scene =
       triangulated(importer,
-                   ply ? importer.ReadFileFromMemory(ply->data(), ply->size(), 0, "ply")
+                   ply ? readFromMemory(importer, std::as_bytes(std::span(*ply)), "ply")
                        : importer.ReadFile(name, 0),
                    name);
   LoadedMesh loaded = fromScene(scene, importer, name, options);
@@ -378,18 +373,12 @@ LoadedMesh loadMeshFromMemory(std::span<const std::byte> bytes, std::string_view
   std::string hint(formatHint);
   std::transform(hint.begin(), hint.end(), hint.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  std::string obj;
   if (ply) {
     hint = "ply";
     bytes = std::as_bytes(std::span<const char>(ply->data(), ply->size()));
-  } else if (hint == "obj" || hint.empty()) {
-    obj = withoutMaterialLibraries(
-        std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-    bytes = std::as_bytes(std::span<const char>(obj.data(), obj.size()));
   }
   Assimp::Importer importer;
-  const aiScene* scene = triangulated(
-      importer, importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, hint.c_str()), name);
+  const aiScene* scene = triangulated(importer, readFromMemory(importer, bytes, hint), name);
   LoadedMesh loaded = fromScene(scene, importer, name, options);
   loaded.mesh.name = std::filesystem::path(name).stem().string();
   return loaded;
