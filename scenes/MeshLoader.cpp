@@ -16,6 +16,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "core/Errors.h"
@@ -309,20 +310,6 @@ std::optional<std::string> canonicalIfPly(std::string_view bytes, std::string_vi
   return canonicalPly(bytes, scan.bodyStart(), name);
 }
 
-// The same on a file, read whole (assimp reads it whole anyway). A file that cannot be opened is
-// left to assimp's message.
-std::optional<std::string> canonicalIfPly(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::string start(64, '\0');
-  in.read(start.data(), static_cast<std::streamsize>(start.size()));
-  start.resize(static_cast<std::size_t>(in.gcount()));
-  if (!readAsPly(start, file.extension().string())) return std::nullopt;
-  std::ostringstream rest;
-  rest << in.rdbuf();
-  return canonicalIfPly(start + rest.str(), file.extension().string(), file.string());
-}
-
 // Reads `bytes` as a mesh file of the format `hint` names (lower case; empty: assimp guesses it
 // from the content). The importer sees that file only (InMemoryMeshFile.h).
 const aiScene* readFromMemory(Assimp::Importer& importer, std::span<const std::byte> bytes,
@@ -342,23 +329,31 @@ const aiScene* triangulated(Assimp::Importer& importer, const aiScene* read,
   return importer.ApplyPostProcessing(aiProcess_Triangulate);
 }
 
+// The file whole, or none when it is not a regular file or cannot be read.
+std::optional<std::string> fileBytes(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) return std::nullopt;
+  return std::move(bytes).str();
+}
+
 }  // namespace
 
+// The file is read here and handed to assimp from memory, so that assimp reads nothing beside it
+// (InMemoryMeshFile.h); one that cannot be read is left to assimp's message.
 LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& options) {
   const std::string name = file.string();
-  std::error_code ec;
-  // assimp calls an empty file "too small" or "empty" depending on the format; say what it means.
-  if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 &&
-      !ec) {
-    throw InputError(name + ": mesh has no triangles (the file is empty)");
+  if (const auto bytes = fileBytes(file)) {
+    std::string extension = file.extension().string();
+    if (!extension.empty()) extension.erase(0, 1);
+    return loadMeshFromMemory(std::as_bytes(std::span(*bytes)), extension, name, options);
   }
-  const auto ply = canonicalIfPly(file);
   Assimp::Importer importer;
-  const aiScene* scene =
-      triangulated(importer,
-                   ply ? readFromMemory(importer, std::as_bytes(std::span(*ply)), "ply")
-                       : importer.ReadFile(name, 0),
-                   name);
+  const aiScene* scene = triangulated(importer, importer.ReadFile(name, 0), name);
   LoadedMesh loaded = fromScene(scene, importer, name, options);
   loaded.mesh.name = file.stem().string();
   return loaded;

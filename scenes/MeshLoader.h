@@ -29,11 +29,12 @@ struct MeshLoadOptions {
   long long maxTriangles = limits::kDefaultMeshTriangles;
 };
 
-// Reads `file`, triangulates, merges every mesh of the file (with its node transform) into one,
-// joins vertices at identical positions and drops vertices no triangle uses. Degenerate triangles
-// are dropped with one warning line on stderr. Throws InputError naming the file when assimp cannot
-// read it, when a coordinate is NaN or infinite, when it has more than options.maxTriangles
-// triangles, or when no triangle is left.
+// Reads `file` (and nothing beside it: a material library it names is not read), triangulates,
+// merges every mesh of the file (with its node transform) into one, joins vertices at identical
+// positions and drops vertices no triangle uses. Degenerate triangles are dropped with one warning
+// line on stderr. Throws InputError naming the file when assimp cannot read it, when a coordinate
+// is NaN or infinite, when it has more than options.maxTriangles triangles, or when no triangle is
+// left.
 [[nodiscard]] LoadedMesh loadMesh(const std::filesystem::path& file,
                                   const MeshLoadOptions& options = {});
 

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "ScratchDir.h"
 #include "core/Errors.h"
@@ -107,6 +108,23 @@ TEST(MeshLoaderMessages, IndexPastTheVerticesIsAnInputError) {
   const auto file = dir.write("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
   const std::string message = errorOf([&] { (void)loadMesh(file); });
   EXPECT_EQ(message.rfind(file.string() + ": ", 0), 0u) << message;
+}
+
+// A mesh file is read alone: assimp 5.2's OBJ importer opens the material library a file names,
+// or the file's name with .mtl, and crashes on some (fuzz/regressions/mesh/ keeps the bytes).
+TEST(MeshLoaderMessages, FilesBesideTheMeshAreNotRead) {
+  ScratchDir dir;
+  const std::string_view crashing("\0mtllib   3\0a\0\0\0t", 16);
+  dir.write("library.mtl", crashing);
+  dir.write("fallback.mtl", crashing);
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  for (const auto& [name, text] :
+       {std::pair<std::string, std::string>("named.obj", "mtllib library.mtl\n" + triangle),
+        {"fallback.obj", "mtllib missing.mtl\n" + triangle},
+        {"itself.obj", "mtllib itself.obj\n" + triangle + std::string(crashing)}}) {
+    const auto file = dir.write(name, text);
+    EXPECT_EQ(loadMesh(file).mesh.triangleCount(), 1u) << name;
+  }
 }
 
 // assimp's PLY reader never returns on a header without end_header; the loader refuses it first.
