@@ -114,7 +114,7 @@ TEST(MeshLoaderMessages, IndexPastTheVerticesIsAnInputError) {
 // or the file's name with .mtl, and crashes on some (fuzz/regressions/mesh/ keeps the bytes).
 TEST(MeshLoaderMessages, FilesBesideTheMeshAreNotRead) {
   ScratchDir dir;
-  const std::string_view crashing("\0mtllib   3\0a\0\0\0t", 16);
+  const std::string_view crashing("\0mtllib  3\0a\0\0\0t", 16);
   dir.write("library.mtl", crashing);
   dir.write("fallback.mtl", crashing);
   const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
@@ -192,7 +192,7 @@ TEST(MeshFromMemory, MaterialLibrariesAreIgnored) {
   // that crashed with a statement after a NUL).
   for (const std::string_view library :
        {std::string_view("\rmtllib x.mtl\n"), std::string_view("\fmtllib x.mtl\n"),
-        std::string_view("\0mtllib x.mtl\n", 15), std::string_view("\0mtllib   3\0a\0\0\0t", 16),
+        std::string_view("\0mtllib x.mtl\n", 15), std::string_view("\0mtllib  3\0a\0\0\0t", 16),
         std::string_view("\nmtllib mesh.obj\n"), std::string_view("\nmtllib m.obj\n"),
         std::string_view("\nmtllib mesh.mtl\n"), std::string_view("\nmtllib mesh\n")}) {
     const std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3" + std::string(library);
