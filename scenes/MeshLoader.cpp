@@ -310,11 +310,15 @@ std::optional<std::string> canonicalIfPly(std::string_view bytes, std::string_vi
   return canonicalPly(bytes, scan.bodyStart(), name);
 }
 
-// Reads `bytes` as a mesh file of the format `hint` names (lower case; empty: assimp guesses it
-// from the content). The importer sees that file only (InMemoryMeshFile.h).
+// Reads `bytes`, the mesh `name`, as a file of the format `hint` names (lower case; empty: assimp
+// guesses it from the content). The importer sees that file only (InMemoryMeshFile.h), under the
+// mesh's own file name, which its messages may repeat, with the hint as its extension (a name that
+// would hold a folder for assimp, with / or \, becomes "mesh").
 const aiScene* readFromMemory(Assimp::Importer& importer, std::span<const std::byte> bytes,
-                              const std::string& hint) {
-  const std::string file = hint.empty() ? "mesh" : "mesh." + hint;
+                              const std::string& hint, const std::string& name) {
+  std::string file = std::filesystem::path(name).stem().string();
+  if (file.empty() || file.find_first_of("/\\") != std::string::npos) file = "mesh";
+  if (!hint.empty()) file += "." + hint;
   importer.SetIOHandler(new InMemoryMeshFile(file, bytes));  // the importer deletes it
   return importer.ReadFile(file, 0);
 }
@@ -373,7 +377,7 @@ LoadedMesh loadMeshFromMemory(std::span<const std::byte> bytes, std::string_view
     bytes = std::as_bytes(std::span<const char>(ply->data(), ply->size()));
   }
   Assimp::Importer importer;
-  const aiScene* scene = triangulated(importer, readFromMemory(importer, bytes, hint), name);
+  const aiScene* scene = triangulated(importer, readFromMemory(importer, bytes, hint, name), name);
   LoadedMesh loaded = fromScene(scene, importer, name, options);
   loaded.mesh.name = std::filesystem::path(name).stem().string();
   return loaded;

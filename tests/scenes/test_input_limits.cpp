@@ -199,6 +199,9 @@ TEST(MeshFromMemory, MaterialLibrariesAreIgnored) {
     EXPECT_EQ(loadMeshFromMemory(bytesOf(text), "obj", "m.obj").mesh.triangleCount(), 1u)
         << library;
     EXPECT_EQ(loadMeshFromMemory(bytesOf(text), "", "m").mesh.triangleCount(), 1u) << library;
+    // A name assimp would split a folder off is not given to it.
+    EXPECT_EQ(loadMeshFromMemory(bytesOf(text), "obj", "dir\\m.obj").mesh.triangleCount(), 1u)
+        << library;
   }
 }
 
