@@ -333,7 +333,7 @@ const aiScene* triangulated(Assimp::Importer& importer, const aiScene* read,
   return importer.ApplyPostProcessing(aiProcess_Triangulate);
 }
 
-// The file whole, or none when it is not a regular file or cannot be read.
+// The file whole, or none when it is not a regular file or cannot be opened.
 std::optional<std::string> fileBytes(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
@@ -341,14 +341,14 @@ std::optional<std::string> fileBytes(const std::filesystem::path& file) {
   if (!in) return std::nullopt;
   std::ostringstream bytes;
   bytes << in.rdbuf();
-  if (in.bad()) return std::nullopt;
   return std::move(bytes).str();
 }
 
 }  // namespace
 
 // The file is read here and handed to assimp from memory, so that assimp reads nothing beside it
-// (InMemoryMeshFile.h); one that cannot be read is left to assimp's message.
+// (InMemoryMeshFile.h); a path that is not a regular file, or cannot be opened, is left to
+// assimp's message.
 LoadedMesh loadMesh(const std::filesystem::path& file, const MeshLoadOptions& options) {
   const std::string name = file.string();
   if (const auto bytes = fileBytes(file)) {
