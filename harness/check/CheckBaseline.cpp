@@ -19,7 +19,9 @@ std::string formatFactor(double x) {
   return buf;
 }
 
-const char* ratioKindName(RatioKind kind) { return kind == RatioKind::Speedup ? "speedup" : "over_floor"; }
+const char* ratioKindName(RatioKind kind) {
+  return kind == RatioKind::Speedup ? "speedup" : "over_floor";
+}
 
 }  // namespace
 
@@ -42,11 +44,15 @@ CheckBaseline readCheckBaseline(const std::filesystem::path& file) {
     for (const auto& [key, e] : j.at("ratios").items()) {
       const std::string kind = e.at("kind").get<std::string>();
       if (kind != ratioKindName(RatioKind::Speedup) && kind != ratioKindName(RatioKind::OverFloor))
-        throw InputError(file.string() + ": ratios: " + key + ": kind: expected speedup or over_floor");
-      b.ratios[key] = {key, e.at("backend").get<std::string>(),
-                       kind == ratioKindName(RatioKind::Speedup) ? RatioKind::Speedup : RatioKind::OverFloor,
-                       e.at("value").get<double>(), e.at("numerator_ms").get<double>(),
-                       e.at("denominator_ms").get<double>()};
+        throw InputError(file.string() + ": ratios: " + key +
+                         ": kind: expected speedup or over_floor");
+      b.ratios[key] = {
+          key,
+          e.at("backend").get<std::string>(),
+          kind == ratioKindName(RatioKind::Speedup) ? RatioKind::Speedup : RatioKind::OverFloor,
+          e.at("value").get<double>(),
+          e.at("numerator_ms").get<double>(),
+          e.at("denominator_ms").get<double>()};
     }
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file.string() + ": not a check baseline (" + e.what() + ")");
@@ -63,10 +69,9 @@ void writeCheckBaseline(const CheckBaseline& b, const std::filesystem::path& fil
   j["gl"] = b.gl;
   j["renderers"] = b.renderers;
   // For the reader; the rule itself is judgeRatio's.
-  j["tolerance"] = {
-      {"speedup", "fails below baseline / " + formatFactor(kSpeedupTolerance)},
-      {"over_floor", "fails above max(baseline * " + formatFactor(kFloorTolerance) + ", " +
-                         formatFactor(kFloorAllowedAtLeast) + ")"}};
+  j["tolerance"] = {{"speedup", "fails below baseline / " + formatFactor(kSpeedupTolerance)},
+                    {"over_floor", "fails above max(baseline * " + formatFactor(kFloorTolerance) +
+                                       ", " + formatFactor(kFloorAllowedAtLeast) + ")"}};
   j["ratios"] = nlohmann::json::object();
   for (const auto& [key, r] : b.ratios)
     j["ratios"][key] = {{"backend", r.backend},

@@ -4,10 +4,9 @@
 // against them.
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "harness/check/CheckTiming.h"
 

@@ -20,23 +20,27 @@ std::filesystem::path defaultBaselineFile() {
   return std::filesystem::path(CDBENCH_SOURCE_DIR) / "results" / "baseline.json";
 }
 
-std::filesystem::path defaultConfigDir() { return std::filesystem::path(CDBENCH_SOURCE_DIR) / "configs"; }
+std::filesystem::path defaultConfigDir() {
+  return std::filesystem::path(CDBENCH_SOURCE_DIR) / "configs";
+}
 
 std::size_t CheckReport::correctnessFailures() const {
-  return static_cast<std::size_t>(std::count_if(correctness.begin(), correctness.end(),
-                                                [](const CorrectnessRow& r) { return !r.passed(); }));
+  return static_cast<std::size_t>(std::count_if(
+      correctness.begin(), correctness.end(), [](const CorrectnessRow& r) { return !r.passed(); }));
 }
 
 std::size_t CheckReport::timingFailures() const {
-  return static_cast<std::size_t>(std::count_if(
-      timing.begin(), timing.end(), [](const TimingRow& r) { return r.status == RatioStatus::Fail; }));
+  return static_cast<std::size_t>(
+      std::count_if(timing.begin(), timing.end(),
+                    [](const TimingRow& r) { return r.status == RatioStatus::Fail; }));
 }
 
 namespace {
 
 using CheckClock = std::chrono::steady_clock;
 
-void reportStep(const CheckOptions& options, CheckClock::time_point start, const std::string& what) {
+void reportStep(const CheckOptions& options, CheckClock::time_point start,
+                const std::string& what) {
   if (!options.progress) return;
   std::fprintf(options.progress, "check: %5.1f s: %s\n",
                std::chrono::duration<double>(CheckClock::now() - start).count(), what.c_str());
@@ -73,12 +77,13 @@ void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const Mach
                              "; ratios of different renderers or builds are not comparable "
                              "(record a baseline for this one with --update-baseline)");
   }
-  const bool anyCompared = std::any_of(skipWhy.begin(), skipWhy.end(),
-                                       [](const auto& kv) { return kv.second.empty(); });
+  const bool anyCompared =
+      std::any_of(skipWhy.begin(), skipWhy.end(), [](const auto& kv) { return kv.second.empty(); });
   if (!anyCompared) {
   } else if (baseline.machine.value("cpu", std::string()) != machine.cpuModel ||
              baseline.machine.value("logical_cores", 0u) != machine.logicalCores) {
-    report.notes.push_back("the baseline was measured on another CPU (" + describeBaseline(baseline) +
+    report.notes.push_back("the baseline was measured on another CPU (" +
+                           describeBaseline(baseline) +
                            "); compared anyway: same renderer and build type");
   }
   std::vector<std::string> added;
@@ -119,11 +124,13 @@ void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const Mach
     }
   }
   if (stale > 0)
-    report.notes.push_back(std::to_string(stale) + " ratio(s) of the baseline not measured by this plan");
+    report.notes.push_back(std::to_string(stale) +
+                           " ratio(s) of the baseline not measured by this plan");
   if (untimed > 0)
-    report.notes.push_back(std::to_string(untimed) +
-                           " ratio(s) of the baseline belong to backends whose timing this run does "
-                           "not measure, not compared");
+    report.notes.push_back(
+        std::to_string(untimed) +
+        " ratio(s) of the baseline belong to backends whose timing this run does "
+        "not measure, not compared");
 }
 
 }  // namespace
@@ -139,7 +146,8 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
     baseline = readCheckBaseline(options.baselineFile);
     report.baselineDescription = describeBaseline(*baseline);
   }
-  const std::vector<std::string> strategies = plan.strategies.empty() ? registry.names() : plan.strategies;
+  const std::vector<std::string> strategies =
+      plan.strategies.empty() ? registry.names() : plan.strategies;
   registry.validate(strategies);
 
   const auto& backendRegistry = VisibilityBackendRegistry::builtin();
@@ -148,7 +156,8 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
   if (backends.empty()) {
     std::vector<std::string> why;
     backends = backendRegistry.available(resources, &why);
-    for (const auto& w : why) report.notes.push_back("backend not checked, it does not start here: " + w);
+    for (const auto& w : why)
+      report.notes.push_back("backend not checked, it does not start here: " + w);
     if (backends.empty()) throw RunError("no visibility backend starts here");
   }
   for (const auto& b : backends) {
@@ -161,12 +170,15 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
     if (t.empty() || std::find(t.begin(), t.end(), b) != t.end())
       report.timedBackends.push_back(b);
     else
-      report.notes.push_back(b + ": correctness only, its timing is not measured (not one of the timing backends)");
+      report.notes.push_back(
+          b + ": correctness only, its timing is not measured (not one of the timing backends)");
   }
   for (const auto& b : options.timingBackends)
     if (std::find(backends.begin(), backends.end(), b) == backends.end())
-      report.notes.push_back(b + " timing not measured: the backend is not checked here (not named, or it does "
-                             "not start)");
+      report.notes.push_back(
+          b +
+          " timing not measured: the backend is not checked here (not named, or it does "
+          "not start)");
   CheckScenes scenes(options.configDir, options.assetDirs);
   // The strategies each backend runs (order-independent passes need a backend that offers them).
   const auto runsOn = [&](const std::string& backend) {
@@ -178,15 +190,16 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
   for (const auto& b : backends)
     for (const auto& s : strategies)
       if (!registry.runsOn(s, b))
-        report.notes.push_back(s + " not checked on " + b +
-                               ": it needs order-independent passes, which the backend does not offer");
+        report.notes.push_back(
+            s + " not checked on " + b +
+            ": it needs order-independent passes, which the backend does not offer");
 
   for (const auto& c : plan.correctness)
     for (std::size_t k = 0; k < backends.size(); ++k) {
       reportStep(options, start, backends[k] + ": correctness on " + c.scene.label());
       // The CPU peers use no backend: checked once, with the first.
-      auto rows =
-          checkCorrectness(resources, backends[k], k == 0, scenes, {c}, runsOn(backends[k]), registry);
+      auto rows = checkCorrectness(resources, backends[k], k == 0, scenes, {c}, runsOn(backends[k]),
+                                   registry);
       report.correctness.insert(report.correctness.end(), rows.begin(), rows.end());
     }
   std::vector<RatioMeasurement> ratios;
@@ -198,12 +211,15 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
       ratios.insert(ratios.end(), m.begin(), m.end());
     }
     for (const auto& c : plan.floors) {
-      reportStep(options, start, backend + ": timing each strategy against its floor on " + c.scene.label());
-      auto m = measureFloors(resources, backend, scenes, {c}, runsOn(backend), registry, withoutFloor);
+      reportStep(options, start,
+                 backend + ": timing each strategy against its floor on " + c.scene.label());
+      auto m =
+          measureFloors(resources, backend, scenes, {c}, runsOn(backend), registry, withoutFloor);
       ratios.insert(ratios.end(), m.begin(), m.end());
     }
   }
-  for (auto& m : ratios) report.timing.push_back({std::move(m), std::nullopt, std::nullopt, RatioStatus::New});
+  for (auto& m : ratios)
+    report.timing.push_back({std::move(m), std::nullopt, std::nullopt, RatioStatus::New});
   if (!withoutFloor.empty()) {
     std::string names;
     for (const auto& n : withoutFloor) names += (names.empty() ? "" : ", ") + n;
@@ -218,7 +234,8 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
   } else {
     CheckBaseline b;
     b.createdUtc = utcTimestamp();
-    for (const auto& backend : report.timedBackends) b.renderers[backend] = report.renderers.at(backend);
+    for (const auto& backend : report.timedBackends)
+      b.renderers[backend] = report.renderers.at(backend);
     b.buildType = machine.buildType;
     b.machine = toJson(machine);
     if (const HeadlessGlContext* gl = resources.openedGl()) b.gl = toJson(gl->info());
@@ -239,11 +256,16 @@ namespace {
 
 const char* ratioStatusText(RatioStatus s) {
   switch (s) {
-    case RatioStatus::Pass: return "PASS";
-    case RatioStatus::Fail: return "FAIL";
-    case RatioStatus::NotCompared: return "not compared";
-    case RatioStatus::New: return "new";
-    case RatioStatus::Recorded: return "recorded";
+    case RatioStatus::Pass:
+      return "PASS";
+    case RatioStatus::Fail:
+      return "FAIL";
+    case RatioStatus::NotCompared:
+      return "not compared";
+    case RatioStatus::New:
+      return "new";
+    case RatioStatus::Recorded:
+      return "recorded";
   }
   return "";
 }
@@ -252,10 +274,11 @@ const char* ratioStatusText(RatioStatus s) {
 
 void printCheckReport(const CheckReport& r, std::FILE* out) {
   for (const auto& [backend, renderer] : r.renderers)
-    std::fprintf(out, "backend:     %s on %s%s\n", backend.c_str(), renderer.c_str(),
-                 std::find(r.timedBackends.begin(), r.timedBackends.end(), backend) == r.timedBackends.end()
-                     ? " (correctness only)"
-                     : "");
+    std::fprintf(
+        out, "backend:     %s on %s%s\n", backend.c_str(), renderer.c_str(),
+        std::find(r.timedBackends.begin(), r.timedBackends.end(), backend) == r.timedBackends.end()
+            ? " (correctness only)"
+            : "");
   std::fprintf(out, "baseline:    %s%s (%s)\n", r.baselineFile.c_str(),
                r.baselineWritten ? " written" : "", r.baselineDescription.c_str());
 
@@ -264,27 +287,31 @@ void printCheckReport(const CheckReport& r, std::FILE* out) {
                "frame", "strategy", "res", "truth", "found", "missed", "extra", "split", "result");
   for (const auto& c : r.correctness) {
     const std::string res = c.resolution > 0 ? std::to_string(c.resolution) : "-";
-    std::fprintf(out, "%-10s %-18s %5d  %-13s %4s %6zu %6zu %6llu %6llu %6llu  %s\n",
-                 c.backend.c_str(), c.scene.c_str(), c.frame, c.strategy.c_str(), res.c_str(),
-                 c.truthPairs, c.foundPairs,
-                 static_cast<unsigned long long>(c.comparison.falseNegatives),
-                 static_cast<unsigned long long>(c.comparison.falsePositives),
-                 static_cast<unsigned long long>(c.comparison.cullingMisses),
-                 c.passed() ? "PASS" : (c.truthPairs == 0 ? "FAIL (no truth pair: vacuous frame)" : "FAIL"));
+    std::fprintf(
+        out, "%-10s %-18s %5d  %-13s %4s %6zu %6zu %6llu %6llu %6llu  %s\n", c.backend.c_str(),
+        c.scene.c_str(), c.frame, c.strategy.c_str(), res.c_str(), c.truthPairs, c.foundPairs,
+        static_cast<unsigned long long>(c.comparison.falseNegatives),
+        static_cast<unsigned long long>(c.comparison.falsePositives),
+        static_cast<unsigned long long>(c.comparison.cullingMisses),
+        c.passed() ? "PASS" : (c.truthPairs == 0 ? "FAIL (no truth pair: vacuous frame)" : "FAIL"));
   }
-  std::fprintf(out,
-               "  missed: truth pairs not found; extra: pairs found that the truth lacks; split: truth\n"
-               "  pairs pruned or split across sets before the exact phase; res -, backend -: a CPU peer (no\n"
-               "  image, run once)\n");
+  std::fprintf(
+      out,
+      "  missed: truth pairs not found; extra: pairs found that the truth lacks; split: truth\n"
+      "  pairs pruned or split across sets before the exact phase; res -, backend -: a CPU peer "
+      "(no\n"
+      "  image, run once)\n");
 
-  std::fprintf(out,
-               "\ntiming: culling-time ratios measured in this process on the same frames, each the\n"
-               "median of its rounds' ratios (ms: the times of that round)\n");
+  std::fprintf(
+      out,
+      "\ntiming: culling-time ratios measured in this process on the same frames, each the\n"
+      "median of its rounds' ratios (ms: the times of that round)\n");
   std::fprintf(out, "%-64s %9s %19s %9s %10s  %s\n", "ratio", "measured", "(ms / ms)", "baseline",
                "allowed", "result");
   for (const auto& t : r.timing) {
     char times[40], base[24] = "-", allowed[24] = "-";
-    std::snprintf(times, sizeof times, "(%.1f / %.1f)", t.measured.numeratorMs, t.measured.denominatorMs);
+    std::snprintf(times, sizeof times, "(%.1f / %.1f)", t.measured.numeratorMs,
+                  t.measured.denominatorMs);
     if (t.baseline) std::snprintf(base, sizeof base, "%.3f", *t.baseline);
     if (t.allowed)
       std::snprintf(allowed, sizeof allowed, "%s %.3f",
@@ -294,11 +321,13 @@ void printCheckReport(const CheckReport& r, std::FILE* out) {
   }
   std::fprintf(out,
                "  a/b: culling time of a over b's (higher: b faster), allowed >= baseline / %g;\n"
-               "  x/floor: x's culling time over its backend work replayed bare, allowed <= max(baseline * %g, %g)\n",
+               "  x/floor: x's culling time over its backend work replayed bare, allowed <= "
+               "max(baseline * %g, %g)\n",
                kSpeedupTolerance, kFloorTolerance, kFloorAllowedAtLeast);
 
   for (const auto& n : r.notes) std::fprintf(out, "note: %s\n", n.c_str());
-  std::fprintf(out, "\ncheck: %s: %zu of %zu correctness rows and %zu of %zu ratios failed (%.1f s)\n",
+  std::fprintf(out,
+               "\ncheck: %s: %zu of %zu correctness rows and %zu of %zu ratios failed (%.1f s)\n",
                r.passed() ? "PASS" : "FAIL", r.correctnessFailures(), r.correctness.size(),
                r.timingFailures(), r.timing.size(), r.seconds);
 }

@@ -12,6 +12,7 @@
 // slowed or faulty strategy and see it fail.
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,8 +21,6 @@
 #include "harness/check/CheckCorrectness.h"
 #include "harness/check/CheckPlan.h"
 #include "harness/check/CheckTiming.h"
-
-#include <map>
 
 namespace cdb {
 
@@ -64,7 +63,7 @@ struct TimingRow {
 
 struct CheckReport {
   std::map<std::string, std::string> renderers;  // per checked backend, what rendered
-  std::vector<std::string> timedBackends;         // the checked backends whose ratios were measured
+  std::vector<std::string> timedBackends;        // the checked backends whose ratios were measured
   std::filesystem::path baselineFile;
   std::string baselineDescription;  // when and where the baseline was measured
   std::vector<CorrectnessRow> correctness;
@@ -75,16 +74,14 @@ struct CheckReport {
 
   [[nodiscard]] std::size_t correctnessFailures() const;
   [[nodiscard]] std::size_t timingFailures() const;
-  [[nodiscard]] bool passed() const {
-    return correctnessFailures() == 0 && timingFailures() == 0;
-  }
+  [[nodiscard]] bool passed() const { return correctnessFailures() == 0 && timingFailures() == 0; }
 };
 
 // Throws InputError (a missing or malformed baseline, config or mesh, an unknown strategy) and
 // RunError (no GL, an unwritable baseline).
-[[nodiscard]] CheckReport runRegressionCheck(const CheckOptions& options,
-                                             const CheckPlan& plan = defaultCheckPlan(),
-                                             const DetectorRegistry& registry = DetectorRegistry::builtin());
+[[nodiscard]] CheckReport runRegressionCheck(
+    const CheckOptions& options, const CheckPlan& plan = defaultCheckPlan(),
+    const DetectorRegistry& registry = DetectorRegistry::builtin());
 
 // The report as tables: each correctness row and each ratio with measured, baseline, allowed and
 // the verdict, then the notes and a summary line.
