@@ -150,7 +150,8 @@ int main(int argc, char** argv) {
       "check", "CI regression check: correctness on fixed frames, timing ratios against a baseline");
   checkCmd->add_option("--baseline", check.baselineFile, "baseline JSON")->capture_default_str();
   checkCmd->add_flag("--update-baseline", check.updateBaseline,
-                     "write the baseline from this run's ratios instead of comparing with it");
+                     "record this run's ratios in the baseline instead of comparing with them (other "
+                     "renderers' and build types' recordings are kept)");
   checkCmd->add_option("--gl", check.glPlatform, "auto | device | surfaceless")->capture_default_str();
   std::string checkBackends;
   checkCmd->add_option("--visibility", checkBackends,

@@ -1,7 +1,9 @@
 #pragma once
-// results/baseline.json: the ratios `cdbench check --update-baseline` measured, the machine and
-// renderer they were measured on, and the rule by which a later check judges its own ratios
-// against them.
+// results/baseline.json: the ratios `cdbench check --update-baseline` measured, each with the
+// machine and renderer it was measured on, and the rule by which a later check judges its own
+// ratios against them. A file holds one recording per renderer (and build type) of each backend:
+// the check of a machine whose CPU rasteriser runs AVX2 compares with the AVX2 recording while one
+// whose rasteriser runs AVX-512 compares with its own.
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -12,7 +14,8 @@
 
 namespace cdb {
 
-struct CheckBaseline {
+// What one `cdbench check --update-baseline` measured.
+struct BaselineRecording {
   std::string createdUtc;
   // Per visibility backend, what rendered (VisibilityBackend::renderer(): the GL renderer, or the
   // CPU rasteriser's instruction set and threads): ratios of another renderer are not comparable.
@@ -24,7 +27,21 @@ struct CheckBaseline {
   std::map<std::string, RatioMeasurement> ratios;  // by RatioMeasurement::key
 };
 
-// Throws InputError naming the file when it is missing, not JSON or not a baseline.
+struct CheckBaseline {
+  // Oldest first. No two hold the same backend with the same renderer and build type.
+  std::vector<BaselineRecording> recordings;
+
+  // The recording of `backend`'s ratios on `renderer` in a `buildType` build, or null.
+  [[nodiscard]] const BaselineRecording* find(const std::string& backend,
+                                              const std::string& renderer,
+                                              const std::string& buildType) const;
+  // Adds `recording` as the newest: each of its backends leaves the older recordings of the same
+  // renderer and build type (with its ratios); a recording left with no backend goes.
+  void record(BaselineRecording recording);
+};
+
+// Throws InputError naming the file when it is missing, not JSON or not a baseline. A file of
+// format 2 (one recording, before a file held several) reads as its one recording.
 [[nodiscard]] CheckBaseline readCheckBaseline(const std::filesystem::path& file);
 // Written atomically; throws RunError when the file cannot be written.
 void writeCheckBaseline(const CheckBaseline& baseline, const std::filesystem::path& file);

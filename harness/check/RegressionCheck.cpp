@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <map>
 
 #include "core/Errors.h"
 #include "culling/visibility/VisibilityBackendRegistry.h"
@@ -47,7 +49,7 @@ void reportStep(const CheckOptions& options, CheckClock::time_point start,
   std::fflush(options.progress);
 }
 
-std::string describeBaseline(const CheckBaseline& b) {
+std::string describeRecording(const BaselineRecording& b) {
   std::string renderers;
   for (const auto& [backend, renderer] : b.renderers)
     renderers += (renderers.empty() ? "" : ", ") + backend + " on " + renderer;
@@ -56,49 +58,78 @@ std::string describeBaseline(const CheckBaseline& b) {
          b.buildType + " build";
 }
 
-// Compares every measured ratio with the baseline's, or marks why it is not compared.
+std::string describeBaseline(const CheckBaseline& b) {
+  std::string out;
+  for (const BaselineRecording& r : b.recordings)
+    out += (out.empty() ? "" : "; ") + describeRecording(r);
+  return out;
+}
+
+// Compares every measured ratio with the baseline's recording of its backend on this renderer, or
+// marks why it is not compared.
 void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const MachineInfo& machine) {
-  // Why a backend's ratios are not compared, per backend ("" = compared).
-  std::map<std::string, std::string> skipWhy;
+  // Per timed backend, the recording its ratios are compared with (null: not compared).
+  std::map<std::string, const BaselineRecording*> recordingOf;
   for (const auto& backend : report.timedBackends) {
     const std::string& renderer = report.renderers.at(backend);
-    std::string& why = skipWhy[backend];
-    const auto it = baseline.renderers.find(backend);
-    if (it == baseline.renderers.end())
+    const BaselineRecording* found = baseline.find(backend, renderer, machine.buildType);
+    recordingOf[backend] = found;
+    if (found != nullptr) continue;
+    // Why not: the renderers and build types the baseline has for this backend.
+    std::string others, otherBuilds;
+    for (const BaselineRecording& r : baseline.recordings) {
+      const auto it = r.renderers.find(backend);
+      if (it == r.renderers.end()) continue;
+      if (it->second == renderer)
+        otherBuilds += (otherBuilds.empty() ? "" : ", ") + r.buildType;
+      else
+        others += (others.empty() ? "'" : ", '") + it->second + "'";
+    }
+    std::string why;
+    if (!otherBuilds.empty())
+      why = "the baseline's " + backend + " ratios on this renderer were measured in a " +
+            otherBuilds + " build, this is a " + machine.buildType + " build";
+    else if (!others.empty())
+      why = "the baseline's " + backend + " ratios were measured on " + others +
+            ", this run's on '" + renderer + "'";
+    else
       why = "the baseline has no ratios of the " + backend + " backend";
-    else if (it->second != renderer)
-      why = "the baseline's " + backend + " ratios were measured on '" + it->second +
-            "', this run's on '" + renderer + "'";
-    else if (baseline.buildType != machine.buildType)
-      why = "the baseline was measured in a " + baseline.buildType + " build, this is a " +
-            machine.buildType + " build";
-    if (!why.empty())
-      report.notes.push_back(backend + " timing not compared: " + why +
-                             "; ratios of different renderers or builds are not comparable "
-                             "(record a baseline for this one with --update-baseline)");
+    report.notes.push_back(
+        backend + " timing not compared: " + why +
+        "; ratios of different renderers or builds are not comparable "
+        "(record a baseline for this one with --update-baseline, which keeps the "
+        "others')");
   }
-  const bool anyCompared =
-      std::any_of(skipWhy.begin(), skipWhy.end(), [](const auto& kv) { return kv.second.empty(); });
-  if (!anyCompared) {
-  } else if (baseline.machine.value("cpu", std::string()) != machine.cpuModel ||
-             baseline.machine.value("logical_cores", 0u) != machine.logicalCores) {
-    report.notes.push_back("the baseline was measured on another CPU (" +
-                           describeBaseline(baseline) +
-                           "); compared anyway: same renderer and build type");
-  }
+  std::vector<const BaselineRecording*> compared;
+  for (const auto& [backend, r] : recordingOf)
+    if (r != nullptr && std::find(compared.begin(), compared.end(), r) == compared.end())
+      compared.push_back(r);
+  for (const BaselineRecording* r : compared)
+    if (r->machine.value("cpu", std::string()) != machine.cpuModel ||
+        r->machine.value("logical_cores", 0u) != machine.logicalCores)
+      report.notes.push_back("the baseline was measured on another CPU (" + describeRecording(*r) +
+                             "); compared anyway: same renderer and build type");
   std::vector<std::string> added;
   for (auto& row : report.timing) {
-    const auto it = baseline.ratios.find(row.measured.key);
-    if (it == baseline.ratios.end()) {
+    const BaselineRecording* r = recordingOf.at(row.measured.backend);
+    if (r == nullptr) {
+      // Shown beside the run's for the reader (the newest recording holding it), not judged.
+      for (auto it = baseline.recordings.rbegin(); it != baseline.recordings.rend(); ++it)
+        if (const auto at = it->ratios.find(row.measured.key); at != it->ratios.end()) {
+          row.baseline = at->second.value;
+          break;
+        }
+      row.status = row.baseline ? RatioStatus::NotCompared : RatioStatus::New;
+      if (!row.baseline) added.push_back(row.measured.key);
+      continue;
+    }
+    const auto it = r->ratios.find(row.measured.key);
+    if (it == r->ratios.end()) {
       row.status = RatioStatus::New;
       added.push_back(row.measured.key);
       continue;
     }
     row.baseline = it->second.value;
-    if (!skipWhy[row.measured.backend].empty()) {
-      row.status = RatioStatus::NotCompared;
-      continue;
-    }
     const RatioVerdict v = judgeRatio(row.measured.kind, it->second.value, row.measured.value);
     row.allowed = v.allowed;
     row.status = v.passed ? RatioStatus::Pass : RatioStatus::Fail;
@@ -107,22 +138,23 @@ void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const Mach
     report.notes.push_back(std::to_string(added.size()) +
                            " ratio(s) not in the baseline, not compared (first: " + added.front() +
                            "); record them with --update-baseline");
-  // The baseline's ratios of backends this run does not time are not stale: another check, with
-  // those backends timed, compares them.
-  const auto timed = [&](const std::string& backend) {
-    return std::find(report.timedBackends.begin(), report.timedBackends.end(), backend) !=
-           report.timedBackends.end();
-  };
-  std::size_t stale = 0, untimed = 0;
-  for (const auto& entry : baseline.ratios) {
-    const std::string& key = entry.first;  // a name, not a binding: lambdas capture it in clang 14
-    if (!timed(entry.second.backend)) {
-      ++untimed;
-    } else if (std::none_of(report.timing.begin(), report.timing.end(),
-                            [&](const TimingRow& t) { return t.measured.key == key; })) {
-      ++stale;
+  // The baseline's ratios of backends this run does not time, or of other renderers, are not
+  // stale: another check, with those backends timed on those renderers, compares them.
+  std::size_t stale = 0, untimed = 0, otherRenderers = 0;
+  for (const BaselineRecording& r : baseline.recordings)
+    for (const auto& entry : r.ratios) {
+      const std::string& key =
+          entry.first;  // a name, not a binding: lambdas capture it in clang 14
+      const auto of = recordingOf.find(entry.second.backend);
+      if (of == recordingOf.end()) {
+        ++untimed;
+      } else if (of->second != &r) {
+        ++otherRenderers;
+      } else if (std::none_of(report.timing.begin(), report.timing.end(),
+                              [&](const TimingRow& t) { return t.measured.key == key; })) {
+        ++stale;
+      }
     }
-  }
   if (stale > 0)
     report.notes.push_back(std::to_string(stale) +
                            " ratio(s) of the baseline not measured by this plan");
@@ -131,6 +163,10 @@ void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const Mach
         std::to_string(untimed) +
         " ratio(s) of the baseline belong to backends whose timing this run does "
         "not measure, not compared");
+  if (otherRenderers > 0)
+    report.notes.push_back(std::to_string(otherRenderers) +
+                           " ratio(s) of the baseline were measured on other renderers or builds, "
+                           "not compared");
 }
 
 }  // namespace
@@ -146,6 +182,11 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
     baseline = readCheckBaseline(options.baselineFile);
     report.baselineDescription = describeBaseline(*baseline);
   }
+  // Recording keeps the file's recordings of other renderers: an unreadable file is refused
+  // before measuring, not overwritten.
+  CheckBaseline kept;
+  if (options.updateBaseline && std::filesystem::exists(options.baselineFile))
+    kept = readCheckBaseline(options.baselineFile);
   const std::vector<std::string> strategies =
       plan.strategies.empty() ? registry.names() : plan.strategies;
   registry.validate(strategies);
@@ -232,7 +273,7 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
   } else if (report.correctnessFailures() > 0) {
     report.notes.push_back("baseline not written: the correctness part failed");
   } else {
-    CheckBaseline b;
+    BaselineRecording b;
     b.createdUtc = utcTimestamp();
     for (const auto& backend : report.timedBackends)
       b.renderers[backend] = report.renderers.at(backend);
@@ -244,9 +285,14 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
       b.ratios[row.measured.key] = row.measured;
       row.status = RatioStatus::Recorded;
     }
-    writeCheckBaseline(b, options.baselineFile);
+    report.baselineDescription = describeRecording(b);
+    kept.record(std::move(b));
+    writeCheckBaseline(kept, options.baselineFile);
     report.baselineWritten = true;
-    report.baselineDescription = describeBaseline(b);
+    const std::size_t others = kept.recordings.size() - 1;
+    if (others > 0)
+      report.notes.push_back("the baseline keeps " + std::to_string(others) +
+                             " recording(s) of other renderers or builds beside this one");
   }
   report.seconds = std::chrono::duration<double>(CheckClock::now() - start).count();
   return report;

@@ -30,8 +30,9 @@ namespace cdb {
 
 struct CheckOptions {
   std::filesystem::path baselineFile = defaultBaselineFile();
-  // Measure, then write the baseline from the measured ratios instead of comparing with it
-  // (refused when the correctness part fails).
+  // Measure, then record the measured ratios in the baseline file instead of comparing with it
+  // (refused when the correctness part fails): a recording that replaces the file's of the same
+  // renderers and build type and keeps the others (CheckBaseline::record).
   bool updateBaseline = false;
   std::string glPlatform = "auto";
   // Visibility backends to check (correctness and timing on each); empty: every registered

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -289,9 +290,11 @@ TEST(RegressionCheck, RatiosOfAnotherRendererAreNotCompared) {
 
   // The same baseline, as if measured on a GPU where ours was ever so much faster.
   CheckBaseline b = readCheckBaseline(options.baselineFile);
-  b.renderers[kBackend] = "Some GPU/PCIe/SSE2";
-  b.gl["renderer"] = b.renderers[kBackend];
-  b.ratios.begin()->second.value = 1000.0;
+  ASSERT_EQ(b.recordings.size(), 1u);
+  BaselineRecording& gpu = b.recordings[0];
+  gpu.renderers[kBackend] = "Some GPU/PCIe/SSE2";
+  gpu.gl["renderer"] = gpu.renderers[kBackend];
+  gpu.ratios.begin()->second.value = 1000.0;
   writeCheckBaseline(b, options.baselineFile);
 
   options.updateBaseline = false;
@@ -301,6 +304,27 @@ TEST(RegressionCheck, RatiosOfAnotherRendererAreNotCompared) {
   EXPECT_TRUE(report.passed());
   ASSERT_FALSE(report.notes.empty());
   EXPECT_NE(report.notes[0].find("Some GPU"), std::string::npos) << report.notes[0];
+
+  // Recording on this renderer keeps the GPU's recording: each machine's check compares with its
+  // own. Held to the GPU's ratio, this run's would fail.
+  options.updateBaseline = true;
+  ASSERT_TRUE(runRegressionCheck(options, plan).baselineWritten);
+  b = readCheckBaseline(options.baselineFile);
+  ASSERT_EQ(b.recordings.size(), 2u);
+  EXPECT_EQ(b.recordings[0].renderers.at(kBackend), "Some GPU/PCIe/SSE2");
+  EXPECT_DOUBLE_EQ(b.recordings[0].ratios.begin()->second.value, 1000.0);
+  EXPECT_EQ(b.recordings[1].renderers.at(kBackend), report.renderers.at(kBackend));
+  options.updateBaseline = false;
+  const CheckReport again = runRegressionCheck(options, plan);
+  ASSERT_EQ(again.timing.size(), 1u);
+  ASSERT_TRUE(again.timing[0].baseline.has_value());
+  EXPECT_EQ(*again.timing[0].baseline, b.recordings[1].ratios.begin()->second.value);
+  EXPECT_TRUE(again.timing[0].status == RatioStatus::Pass ||
+              again.timing[0].status == RatioStatus::Fail)
+      << "compared with this renderer's recording";
+  EXPECT_TRUE(std::any_of(again.notes.begin(), again.notes.end(), [](const std::string& n) {
+    return n.starts_with("1 ratio(s) of the baseline were measured on other renderers");
+  }));
 }
 
 // A checked backend left out of the timing backends is checked for correctness only: no ratio is
@@ -322,8 +346,9 @@ TEST(RegressionCheck, OnlyTheTimingBackendsAreTimed) {
 
   // The baseline as if `other` had been ever so much faster then.
   CheckBaseline b = readCheckBaseline(options.baselineFile);
-  ASSERT_EQ(b.ratios.size(), 2u);
-  b.ratios.at(other + ": " + plan.speedups[0].key()).value = 1000.0;
+  ASSERT_EQ(b.recordings.size(), 1u);
+  ASSERT_EQ(b.recordings[0].ratios.size(), 2u);
+  b.recordings[0].ratios.at(other + ": " + plan.speedups[0].key()).value = 1000.0;
   writeCheckBaseline(b, options.baselineFile);
 
   options.updateBaseline = false;
@@ -348,14 +373,22 @@ TEST(RegressionCheck, OnlyTheTimingBackendsAreTimed) {
   EXPECT_EQ(row->status, RatioStatus::Fail);
   EXPECT_FALSE(all.passed());
 
-  // A baseline recorded with fewer timing backends holds only their ratios and renderers.
+  // A recording with fewer timing backends holds only their ratios and renderers; the older
+  // recording keeps those of the others.
   options.updateBaseline = true;
   options.timingBackends = {kBackend};
   ASSERT_TRUE(runRegressionCheck(options, plan).baselineWritten);
   b = readCheckBaseline(options.baselineFile);
-  EXPECT_EQ(b.ratios.size(), 1u);
-  EXPECT_EQ(b.renderers.size(), 1u);
-  EXPECT_EQ(b.renderers.count(kBackend), 1u);
+  ASSERT_EQ(b.recordings.size(), 2u);
+  const BaselineRecording& newer = b.recordings[1];
+  EXPECT_EQ(newer.ratios.size(), 1u);
+  EXPECT_EQ(newer.renderers.size(), 1u);
+  EXPECT_EQ(newer.renderers.count(kBackend), 1u);
+  const BaselineRecording& older = b.recordings[0];
+  EXPECT_EQ(older.renderers.size(), 1u);
+  EXPECT_EQ(older.renderers.count(other), 1u);
+  ASSERT_EQ(older.ratios.size(), 1u);
+  EXPECT_DOUBLE_EQ(older.ratios.begin()->second.value, 1000.0);
 
   options.timingBackends = {"no-such-backend"};
   EXPECT_THROW((void)runRegressionCheck(options, plan), InputError);
@@ -386,9 +419,23 @@ TEST(CheckBaselineRule, FloorRatioFailsOnlyAboveItsAllowance) {
   EXPECT_DOUBLE_EQ(judgeRatio(RatioKind::OverFloor, 2.0, 1.0).allowed, 2.0 * kFloorTolerance);
 }
 
+BaselineRecording recordingOn(std::map<std::string, std::string> renderers,
+                              const std::string& buildType = "Release") {
+  BaselineRecording b;
+  b.createdUtc = "2025-01-01T00:00:00Z";
+  b.renderers = std::move(renderers);
+  b.buildType = buildType;
+  b.machine = {{"cpu", "x"}, {"logical_cores", 2}, {"build_type", buildType}};
+  b.commandLine = {"cdbench", "check", "--update-baseline"};
+  for (const auto& [backend, renderer] : b.renderers)
+    b.ratios[backend + ": cullide/ours x"] = {backend + ": cullide/ours x", backend,
+                                              RatioKind::Speedup, 2.0, 200.0, 100.0};
+  return b;
+}
+
 TEST(CheckBaselineFile, RoundTripsAndRefusesOtherJson) {
   const test::ScratchDir dir;
-  CheckBaseline b;
+  BaselineRecording b;
   b.createdUtc = "2025-01-01T00:00:00Z";
   b.renderers = {{"gl-queries", "llvmpipe"}, {"cpu", "cpu depth rasteriser"}};
   b.buildType = "Release";
@@ -397,9 +444,14 @@ TEST(CheckBaselineFile, RoundTripsAndRefusesOtherJson) {
   b.commandLine = {"cdbench", "check", "--update-baseline"};
   b.ratios["cullide/ours x"] = {"cullide/ours x", "gl-queries", RatioKind::Speedup, 4.25, 500.0, 117.6};
   b.ratios["ours/floor x"] = {"ours/floor x", "cpu", RatioKind::OverFloor, 1.02, 51.0, 50.0};
-  const auto file = dir.path() / "b.json";
-  writeCheckBaseline(b, file);
-  const CheckBaseline back = readCheckBaseline(file);
+  CheckBaseline file;
+  file.recordings = {recordingOn({{"cpu", "cpu depth rasteriser (AVX3)"}}), b};
+  const auto path = dir.path() / "b.json";
+  writeCheckBaseline(file, path);
+  const CheckBaseline read = readCheckBaseline(path);
+  ASSERT_EQ(read.recordings.size(), 2u);
+  EXPECT_EQ(read.recordings[0].renderers, file.recordings[0].renderers);
+  const BaselineRecording& back = read.recordings[1];
   EXPECT_EQ(back.renderers, b.renderers);
   EXPECT_EQ(back.ratios.at("ours/floor x").backend, "cpu");
   EXPECT_EQ(back.buildType, "Release");
@@ -410,7 +462,50 @@ TEST(CheckBaselineFile, RoundTripsAndRefusesOtherJson) {
   EXPECT_EQ(back.ratios.at("ours/floor x").kind, RatioKind::OverFloor);
 
   EXPECT_THROW((void)readCheckBaseline(dir.write("other.json", "{\"frames\": 3}")), InputError);
-  EXPECT_THROW((void)readCheckBaseline(dir.write("broken.json", "{\"format\": 2,")), InputError);
+  EXPECT_THROW((void)readCheckBaseline(dir.write("broken.json", "{\"format\": 3,")), InputError);
+  EXPECT_THROW((void)readCheckBaseline(dir.write("none.json", "{\"format\": 3}")), InputError);
+}
+
+// A file written before a baseline held several recordings (format 2: one recording at the top)
+// reads as that recording.
+TEST(CheckBaselineFile, OneRecordingFileOfFormatTwoReadsAsItsRecording) {
+  const test::ScratchDir dir;
+  const auto path = dir.write("old.json", R"json({
+    "format": 2, "created_utc": "2026-11-30T15:45:37Z", "command_line": ["cdbench", "check"],
+    "machine": {"cpu": "AMD EPYC", "logical_cores": 2, "build_type": "Release"}, "gl": null,
+    "renderers": {"cpu": "cpu depth rasteriser (Highway AVX3, 2 threads)"},
+    "ratios": {"cpu: cullide/ours e": {"backend": "cpu", "kind": "speedup", "value": 2.07,
+                                       "numerator_ms": 5.49, "denominator_ms": 2.65}}})json");
+  const CheckBaseline b = readCheckBaseline(path);
+  ASSERT_EQ(b.recordings.size(), 1u);
+  EXPECT_EQ(b.recordings[0].createdUtc, "2026-11-30T15:45:37Z");
+  EXPECT_EQ(b.recordings[0].ratios.at("cpu: cullide/ours e").value, 2.07);
+  EXPECT_NE(b.find("cpu", "cpu depth rasteriser (Highway AVX3, 2 threads)", "Release"), nullptr);
+  EXPECT_EQ(b.find("cpu", "cpu depth rasteriser (Highway AVX2, 2 threads)", "Release"), nullptr);
+  EXPECT_EQ(b.find("cpu", "cpu depth rasteriser (Highway AVX3, 2 threads)", "Debug"), nullptr);
+}
+
+// A new recording replaces each of its backends where an older one has the same renderer and build
+// type, and keeps every other renderer's and build type's; a recording left with none goes.
+TEST(CheckBaselineFile, RecordingReplacesOnlyTheSameRendererAndBuild) {
+  CheckBaseline b;
+  b.record(recordingOn({{"cpu", "AVX3"}, {"gl-flags", "llvmpipe"}}));
+  b.record(recordingOn({{"cpu", "AVX2"}}));
+  b.record(recordingOn({{"cpu", "AVX2"}}, "Debug"));
+  ASSERT_EQ(b.recordings.size(), 3u);
+
+  b.record(recordingOn({{"cpu", "AVX2"}, {"gl-flags", "llvmpipe"}}));
+  ASSERT_EQ(b.recordings.size(), 3u) << "the first keeps cpu on AVX3; the second (AVX2) went";
+  EXPECT_EQ(b.recordings[0].renderers, (std::map<std::string, std::string>{{"cpu", "AVX3"}}));
+  ASSERT_EQ(b.recordings[0].ratios.size(), 1u);
+  EXPECT_EQ(b.recordings[0].ratios.begin()->second.backend, "cpu");
+  EXPECT_EQ(b.recordings[1].buildType, "Debug");
+  EXPECT_EQ(b.recordings[2].renderers.size(), 2u);
+  EXPECT_EQ(b.find("gl-flags", "llvmpipe", "Release"), &b.recordings[2]);
+  EXPECT_EQ(b.find("cpu", "AVX2", "Release"), &b.recordings[2]);
+  EXPECT_EQ(b.find("cpu", "AVX2", "Debug"), &b.recordings[1]);
+  EXPECT_EQ(b.find("cpu", "AVX3", "Release"), &b.recordings[0]);
+  EXPECT_EQ(b.find("gl-queries", "llvmpipe", "Release"), nullptr);
 }
 
 }  // namespace
