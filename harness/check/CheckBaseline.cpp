@@ -79,11 +79,14 @@ const BaselineRecording* CheckBaseline::find(const std::string& backend,
 }
 
 void CheckBaseline::record(BaselineRecording recording) {
+  if (recording.renderers.empty()) return;  // no backend timed: nothing to keep
   for (BaselineRecording& older : recordings) {
     if (older.buildType != recording.buildType) continue;
-    for (const auto& [backend, renderer] : recording.renderers) {
+    for (const auto& entry : recording.renderers) {
+      // A name, not a binding: lambdas capture it in clang 14.
+      const std::string& backend = entry.first;
       const auto it = older.renderers.find(backend);
-      if (it == older.renderers.end() || it->second != renderer) continue;
+      if (it == older.renderers.end() || it->second != entry.second) continue;
       older.renderers.erase(it);
       std::erase_if(older.ratios, [&](const auto& kv) { return kv.second.backend == backend; });
     }

@@ -36,7 +36,8 @@ struct CheckBaseline {
                                               const std::string& renderer,
                                               const std::string& buildType) const;
   // Adds `recording` as the newest: each of its backends leaves the older recordings of the same
-  // renderer and build type (with its ratios); a recording left with no backend goes.
+  // renderer and build type (with its ratios); a recording left with no backend goes. One of no
+  // backend (none timed) is not added.
   void record(BaselineRecording recording);
 };
 

@@ -506,6 +506,9 @@ TEST(CheckBaselineFile, RecordingReplacesOnlyTheSameRendererAndBuild) {
   EXPECT_EQ(b.find("cpu", "AVX2", "Debug"), &b.recordings[1]);
   EXPECT_EQ(b.find("cpu", "AVX3", "Release"), &b.recordings[0]);
   EXPECT_EQ(b.find("gl-queries", "llvmpipe", "Release"), nullptr);
+
+  b.record(recordingOn({}));
+  EXPECT_EQ(b.recordings.size(), 3u) << "a recording of no backend is not kept";
 }
 
 }  // namespace
