@@ -143,8 +143,8 @@ void judgeAgainst(CheckReport& report, const CheckBaseline& baseline, const Mach
   std::size_t stale = 0, untimed = 0, otherRenderers = 0;
   for (const BaselineRecording& r : baseline.recordings)
     for (const auto& entry : r.ratios) {
-      const std::string& key =
-          entry.first;  // a name, not a binding: lambdas capture it in clang 14
+      // A name, not a binding: lambdas capture it in clang 14.
+      const std::string& key = entry.first;
       const auto of = recordingOf.find(entry.second.backend);
       if (of == recordingOf.end()) {
         ++untimed;
@@ -176,17 +176,15 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
   const auto start = CheckClock::now();
   CheckReport report;
   report.baselineFile = options.baselineFile;
-  // Read first: a missing baseline is reported before a minute of measuring.
-  std::optional<CheckBaseline> baseline;
-  if (!options.updateBaseline) {
+  // Read first: a missing baseline is reported before a minute of measuring. Recording keeps the
+  // file's recordings of other renderers, so a file there that does not read is refused then too,
+  // not overwritten.
+  const bool compare = !options.updateBaseline;
+  CheckBaseline baseline;
+  if (compare || std::filesystem::exists(options.baselineFile)) {
     baseline = readCheckBaseline(options.baselineFile);
-    report.baselineDescription = describeBaseline(*baseline);
+    if (compare) report.baselineDescription = describeBaseline(baseline);
   }
-  // Recording keeps the file's recordings of other renderers: an unreadable file is refused
-  // before measuring, not overwritten.
-  CheckBaseline kept;
-  if (options.updateBaseline && std::filesystem::exists(options.baselineFile))
-    kept = readCheckBaseline(options.baselineFile);
   const std::vector<std::string> strategies =
       plan.strategies.empty() ? registry.names() : plan.strategies;
   registry.validate(strategies);
@@ -268,8 +266,8 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
   }
 
   const MachineInfo machine = probeMachine();
-  if (baseline) {
-    judgeAgainst(report, *baseline, machine);
+  if (compare) {
+    judgeAgainst(report, baseline, machine);
   } else if (report.correctnessFailures() > 0) {
     report.notes.push_back("baseline not written: the correctness part failed");
   } else {
@@ -286,10 +284,11 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
       row.status = RatioStatus::Recorded;
     }
     report.baselineDescription = describeRecording(b);
-    kept.record(std::move(b));
-    writeCheckBaseline(kept, options.baselineFile);
+    const bool recorded = !b.renderers.empty();  // else no backend timed: nothing to add
+    baseline.record(std::move(b));
+    writeCheckBaseline(baseline, options.baselineFile);
     report.baselineWritten = true;
-    const std::size_t others = kept.recordings.size() - 1;
+    const std::size_t others = baseline.recordings.size() - (recorded ? 1 : 0);
     if (others > 0)
       report.notes.push_back("the baseline keeps " + std::to_string(others) +
                              " recording(s) of other renderers or builds beside this one");
