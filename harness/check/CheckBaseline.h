@@ -59,6 +59,12 @@ void writeCheckBaseline(const CheckBaseline& baseline, const std::filesystem::pa
 inline constexpr double kSpeedupTolerance = 1.5;
 inline constexpr double kFloorTolerance = 1.5;
 inline constexpr double kFloorAllowedAtLeast = 2.0;
+// A ratio that fails is measured again, from a fresh set-up, and fails the check only when every
+// one of kTimingAttempts measurements fails. CI runs the check beside other tests on 2 cores, and a
+// burst of their load can land on one side of most of a ratio's rounds (the cpu backend's `ours`
+// culls env3's frame in ~1.6 ms, a few scheduler slices); a strategy really slower stays slower in
+// every attempt (the 10x one of the check's tests fails all three).
+inline constexpr int kTimingAttempts = 3;
 
 struct RatioVerdict {
   double allowed = 0;  // the bound the measured value is held to (a minimum for a speedup)

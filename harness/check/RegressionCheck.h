@@ -60,6 +60,9 @@ struct TimingRow {
   std::optional<double> baseline;
   std::optional<double> allowed;
   RatioStatus status = RatioStatus::New;
+  // The values of the earlier measurements of this ratio that failed, in order (kTimingAttempts):
+  // `measured` is the last one.
+  std::vector<double> failedAttempts;
 };
 
 struct CheckReport {
