@@ -240,6 +240,17 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
       // The CPU peers use no backend: checked once, with the first.
       auto rows = checkCorrectness(resources, backends[k], k == 0, scenes, {c}, runsOn(backends[k]),
                                    registry);
+      // Named as they happen, so that a log that keeps only its head still shows them.
+      for (const CorrectnessRow& row : rows)
+        if (!row.passed())
+          reportStep(options, start,
+                     "FAIL: " + row.strategy + " on " + row.backend + ", " + row.scene +
+                         ", frame " + std::to_string(row.frame) +
+                         (row.resolution > 0 ? ", " + std::to_string(row.resolution) + " px" : "") +
+                         ": " + std::to_string(row.comparison.falseNegatives) + " missed, " +
+                         std::to_string(row.comparison.falsePositives) + " extra, " +
+                         std::to_string(row.comparison.cullingMisses) + " split of " +
+                         std::to_string(row.truthPairs) + " truth pairs");
       report.correctness.insert(report.correctness.end(), rows.begin(), rows.end());
     }
   // Each timing row's measurement, kept to measure a failing ratio again.
@@ -302,6 +313,13 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
         const RatioVerdict v = judgeRatio(row.measured.kind, *row.baseline, row.measured.value);
         row.allowed = v.allowed;
         row.status = v.passed ? RatioStatus::Pass : RatioStatus::Fail;
+      }
+      if (row.status == RatioStatus::Fail) {
+        char last[64];
+        std::snprintf(last, sizeof last, "%.3f", row.measured.value);
+        reportStep(options, start,
+                   "FAIL: " + row.measured.key + " in all " + std::to_string(kTimingAttempts) +
+                       " attempts (last " + last + ")");
       }
     }
   } else if (report.correctnessFailures() > 0) {

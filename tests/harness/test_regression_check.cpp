@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -160,6 +161,30 @@ CheckPlan timingPlan() {
   return plan;
 }
 
+// The check's progress lines (CheckOptions::progress), caught in a temporary file.
+class CaughtProgress {
+ public:
+  CaughtProgress() : file_(std::tmpfile()) {}
+  ~CaughtProgress() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  CaughtProgress(const CaughtProgress&) = delete;
+  CaughtProgress& operator=(const CaughtProgress&) = delete;
+  [[nodiscard]] std::FILE* file() const { return file_; }
+  [[nodiscard]] std::string text() const {
+    std::string out;
+    if (file_ == nullptr) return out;
+    std::rewind(file_);
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, file_)) > 0;)
+      out.append(buffer, n);
+    return out;
+  }
+
+ private:
+  std::FILE* file_;
+};
+
 const TimingRow* rowOf(const CheckReport& report, const std::string& key) {
   for (const auto& t : report.timing)
     if (t.measured.key == key) return &t;
@@ -177,6 +202,9 @@ TEST(RegressionCheck, StrategyMadeTenTimesSlowerFailsTheTiming) {
   ASSERT_EQ(recorded.timing.size(), 3u);  // cullide/ours, cullide/floor, ours/floor
 
   options.updateBaseline = false;
+  const CaughtProgress progress;
+  ASSERT_NE(progress.file(), nullptr);
+  options.progress = progress.file();
   const CheckReport slowed =
       runRegressionCheck(options, plan, registryWith("ours", [](auto s) {
                            return std::make_unique<TimesSlower>(std::move(s), kCaughtSlowdown);
@@ -192,7 +220,12 @@ TEST(RegressionCheck, StrategyMadeTenTimesSlowerFailsTheTiming) {
     ASSERT_EQ(row->failedAttempts.size(), static_cast<std::size_t>(kTimingAttempts - 1)) << key;
     for (const double v : row->failedAttempts)
       EXPECT_FALSE(judgeRatio(row->measured.kind, *row->baseline, v).passed) << key;
+    // Named in the progress lines, which a log cut short keeps.
+    EXPECT_NE(progress.text().find("FAIL: " + keyOf(key) + " in all 3 attempts"), std::string::npos)
+        << progress.text();
   }
+  EXPECT_EQ(progress.text().find("FAIL: " + keyOf(plan.floors[0].key("cullide"))),
+            std::string::npos);
 }
 
 // A burst of load on one side of a ratio's rounds: `ours` is 100x slower only in the first instance
@@ -253,10 +286,19 @@ TEST(RegressionCheck, StrategyDroppingACollidingObjectFailsTheCorrectness) {
 
   ASSERT_TRUE(runRegressionCheck(options, plan).baselineWritten);
   options.updateBaseline = false;
+  const CaughtProgress progress;
+  ASSERT_NE(progress.file(), nullptr);
+  options.progress = progress.file();
   const CheckReport report = runRegressionCheck(options, plan, faulty);
   printCheckReport(report, stdout);
   EXPECT_FALSE(report.passed());
   ASSERT_EQ(report.correctness.size(), 4u);
+  // Each failing row named in the progress lines as it happens, the passing ones not.
+  const std::string at = "FAIL: ours on " + kBackend + ", " + tori().scene.label() + ", frame " +
+                         std::to_string(tori().contactFrame) + ", ";
+  for (const char* res : {"64 px: ", "256 px: "})
+    EXPECT_NE(progress.text().find(at + res), std::string::npos) << progress.text();
+  EXPECT_EQ(progress.text().find("FAIL: cullide"), std::string::npos) << progress.text();
   for (const auto& row : report.correctness) {
     EXPECT_GT(row.truthPairs, 0u);
     if (row.strategy == "ours") {
