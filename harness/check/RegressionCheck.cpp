@@ -50,6 +50,17 @@ void reportStep(const CheckOptions& options, CheckClock::time_point start,
   std::fflush(options.progress);
 }
 
+// A ratio's value as the report writes it ("1.143"), and its bound (">= 1.143", a speedup's
+// minimum; "<= 2.000").
+std::string ratioText(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", value);
+  return text;
+}
+std::string allowedText(RatioKind kind, double allowed) {
+  return (kind == RatioKind::Speedup ? ">= " : "<= ") + ratioText(allowed);
+}
+
 std::string describeRecording(const BaselineRecording& b) {
   std::string renderers;
   for (const auto& [backend, renderer] : b.renderers)
@@ -302,12 +313,11 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
       TimingRow& row = report.timing[i];
       for (int attempt = 2; row.status == RatioStatus::Fail && attempt <= kTimingAttempts;
            ++attempt) {
-        char failed[160];
-        std::snprintf(failed, sizeof failed, "%.3f against allowed %s %.3f", row.measured.value,
-                      row.measured.kind == RatioKind::Speedup ? ">=" : "<=", *row.allowed);
         reportStep(options, start,
-                   row.measured.key + ": failed (" + failed + "), measuring again (attempt " +
-                       std::to_string(attempt) + " of " + std::to_string(kTimingAttempts) + ")");
+                   row.measured.key + ": failed (" + ratioText(row.measured.value) +
+                       " against allowed " + allowedText(row.measured.kind, *row.allowed) +
+                       "), measuring again (attempt " + std::to_string(attempt) + " of " +
+                       std::to_string(kTimingAttempts) + ")");
         row.failedAttempts.push_back(row.measured.value);
         row.measured = measureAgain[i]();
         const RatioVerdict v = judgeRatio(row.measured.kind, *row.baseline, row.measured.value);
@@ -315,11 +325,9 @@ CheckReport runRegressionCheck(const CheckOptions& options, const CheckPlan& pla
         row.status = v.passed ? RatioStatus::Pass : RatioStatus::Fail;
       }
       if (row.status == RatioStatus::Fail) {
-        char last[64];
-        std::snprintf(last, sizeof last, "%.3f", row.measured.value);
         reportStep(options, start,
                    "FAIL: " + row.measured.key + " in all " + std::to_string(kTimingAttempts) +
-                       " attempts (last " + last + ")");
+                       " attempts (last " + ratioText(row.measured.value) + ")");
       }
     }
   } else if (report.correctnessFailures() > 0) {
@@ -408,25 +416,19 @@ void printCheckReport(const CheckReport& r, std::FILE* out) {
   std::fprintf(out, "%-64s %9s %19s %9s %10s  %s\n", "ratio", "measured", "(ms / ms)", "baseline",
                "allowed", "result");
   for (const auto& t : r.timing) {
-    char times[40], base[24] = "-", allowed[24] = "-";
+    char times[40];
     std::snprintf(times, sizeof times, "(%.1f / %.1f)", t.measured.numeratorMs,
                   t.measured.denominatorMs);
-    if (t.baseline) std::snprintf(base, sizeof base, "%.3f", *t.baseline);
-    if (t.allowed)
-      std::snprintf(allowed, sizeof allowed, "%s %.3f",
-                    t.measured.kind == RatioKind::Speedup ? ">=" : "<=", *t.allowed);
+    const std::string base = t.baseline ? ratioText(*t.baseline) : "-";
+    const std::string allowed = t.allowed ? allowedText(t.measured.kind, *t.allowed) : "-";
     std::string result = ratioStatusText(t.status);
     if (!t.failedAttempts.empty()) {
       result += " (attempt " + std::to_string(t.failedAttempts.size() + 1) + "; failed before:";
-      for (const double v : t.failedAttempts) {
-        char value[24];
-        std::snprintf(value, sizeof value, " %.3f", v);
-        result += value;
-      }
+      for (const double v : t.failedAttempts) result += " " + ratioText(v);
       result += ")";
     }
     std::fprintf(out, "%-64s %9.3f %19s %9s %10s  %s\n", t.measured.key.c_str(), t.measured.value,
-                 times, base, allowed, result.c_str());
+                 times, base.c_str(), allowed.c_str(), result.c_str());
   }
   std::fprintf(out,
                "  a/b: culling time of a over b's (higher: b faster), allowed >= baseline / %g;\n"
