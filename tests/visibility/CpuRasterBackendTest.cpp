@@ -149,6 +149,40 @@ TEST(CpuRasterBackend, PassGoesOnAfterAFetch) {
   EXPECT_EQ(backend.storedDepth(0, 0), 1.f);    // the clear beside it
 }
 
+// A tile's walk stops after its last test still open: a write issued after every test of a fetch
+// is not made pending there, in a pass that ends with the fetch (a fresh pass after it) or in one
+// that goes on after it, where it is walked before the tests that follow and hides what lies
+// behind it.
+TEST(CpuRasterBackend, WritesAfterTheLastTestAreWalkedOnlyWhereAPassGoesOn) {
+  // A at z = 0 in front of B at z = 2 (the view looks along +z: nearer is smaller z).
+  const SceneGeometry scene =
+      test::sceneOf({test::squareMesh(0, 0, 0, 1), test::squareMesh(0, 0, 2, 1)});
+  const ViewSpec view{Eigen::Vector3d::UnitZ(),
+                      Aabb(Eigen::Vector3d(-2, -2, -3), Eigen::Vector3d(2, 2, 3)), 64};
+  for (const bool goesOn : {false, true}) {
+    SCOPED_TRACE(goesOn ? "the pass goes on after the fetch" : "a fresh pass after the fetch");
+    CpuRasterBackend backend;
+    backend.attachScene(scene);
+    backend.setPoses(test::identityPoses(scene.objectCount()));
+    backend.beginPass(view, DepthUse::Fresh);
+    const QueryIndex first = backend.queryRange(test::wholeOf(scene, 1));
+    backend.writeRange(test::wholeOf(scene, 0));
+    std::vector<std::uint8_t> answers;
+    backend.fetchResults(answers);
+    ASSERT_EQ(answers.size(), 1u);
+    EXPECT_EQ(answers[first], 1);  // nothing drawn before it
+    EXPECT_EQ(backend.counters().tileWrites, 0u);
+    EXPECT_GT(backend.counters().tileTests, 0u);
+    if (!goesOn) backend.beginPass(view, DepthUse::Fresh);
+    const QueryIndex second = backend.queryRange(test::wholeOf(scene, 1));
+    backend.fetchResults(answers);
+    ASSERT_EQ(answers.size(), 1u);
+    // Going on, B is tested behind A's depths; in a fresh pass against the clear value.
+    EXPECT_EQ(answers[second], goesOn ? 0 : 1);
+    EXPECT_EQ(backend.counters().tileWrites > 0, goesOn);
+  }
+}
+
 // A 20 x 20 grid of squares (two triangles each, row by row) in the plane z = z0 over [-1, 1]^2.
 Mesh gridMesh(float z0) {
   Mesh m;

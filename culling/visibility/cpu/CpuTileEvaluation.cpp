@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <type_traits>
+#include <utility>
 
 #include "culling/visibility/cpu/CpuPieces.h"
 
@@ -314,6 +315,34 @@ void enterPass(TileAt tile, const CpuScene& scene, const RasterPass& raster, Cpu
   state.sign = raster.sign;
 }
 
+// A write item met in a tile's walk: drawn (plain evaluation), dropped where it changes nothing,
+// or made pending.
+void walkWrite(TileAt at, const CpuScene& scene, const CpuRun& run, std::uint32_t i,
+               const CpuEvaluation& evaluation, CpuTileWork& work) {
+  CpuTileState& state = at.state;
+  const CpuItem& item = run.bins.items[i];
+  const RasterPass& raster = rasterOf(run, item);
+  enterPass(at, scene, raster, work);
+  ++work.writes;
+  if (!evaluation.demandDriven) {
+    writeItem(state.depth, scene, run, item, work);
+    return;
+  }
+  const BlockMask blocks = blocksUnder(state.depth, item.rect.within(tileRect(state.depth)));
+  // At or behind everything stored under it (pending writes only add nearer keys): it changes
+  // nothing.
+  if (storedDecides<false>(state.depth, blocks, raster.sign, item.kLo)) return;
+  // A pending write keeps its prepared pieces: a tile with this many (thousands of node boxes in
+  // one tile at a low resolution) has them drawn instead, which leaves the same depths.
+  if (state.pending.size() >= evaluation.mostPendingInTile) {
+    drawAllPending(at, scene, work);
+    clearPending(at);
+  }
+  addPending(at, scene, {blocks, item.kLo, item.kHi, objectOf(run, item), &run, i},
+             raster.orderIndependent, evaluation.mostPendingInBlock, work);
+  if (state.pendingBlocks == 0) clearPending(at);
+}
+
 }  // namespace
 
 CpuTileWork& CpuTileWork::operator+=(const CpuTileWork& o) {
@@ -333,6 +362,7 @@ void startTile(CpuTileState& state, const CpuChain& chain, std::uint32_t tile, f
   clearPending(state);
   state.sign = 0.f;
   state.chain = chainId;
+  state.rest = {};
 }
 
 void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
@@ -340,7 +370,30 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
                   CpuAnswers answers, CpuPreparedScratch& prepared, CpuTileWork& work) {
   const TileAt at{state, prepared};
   const PixelRect inTile = tileRect(state.depth);
-  const std::span<const std::uint32_t> items = run.bins.chains[chain].itemsOf(tile);
+  // A pass going on in the buffer after a fetch: first the writes its last walk left out.
+  if (state.rest.run != nullptr) {
+    const CpuTileState::Rest rest = std::exchange(state.rest, {});
+    const std::span<const std::uint32_t> left = rest.run->bins.chains[rest.chain].itemsOf(tile);
+    for (std::size_t n = rest.from; n < left.size(); ++n)
+      if (const CpuItem& item = rest.run->bins.items[left[n]]; !item.test)
+        walkWrite(at, scene, *rest.run, left[n], evaluation, work);
+  }
+  std::span<const std::uint32_t> items = run.bins.chains[chain].itemsOf(tile);
+  // Nothing after the tile's last test still open can change an answer, so the walk stops there
+  // (the writes after it would be made pending, or drawn, for no test). Only a later pass going on
+  // in the buffer (of the run's last chain, CpuRasterBackend::flush) could read them: they are
+  // walked before it (state.rest).
+  if (evaluation.demandDriven && evaluation.earlyOut) {
+    std::size_t end = items.size();
+    for (; end > 0; --end) {
+      const CpuItem& item = run.bins.items[items[end - 1]];
+      if (item.test && !answered(item, answers, run.recording.commands[item.command].gateBack))
+        break;
+    }
+    if (end < items.size() && chain + 1 == run.bins.chainCount)
+      state.rest = {&run, chain, static_cast<std::uint32_t>(end)};
+    items = items.first(end);
+  }
   for (std::size_t n = 0; n < items.size(); ++n) {
     const std::uint32_t i = items[n];
     // (A tile's items lie scattered in the recording's: the next few are fetched ahead, and the
@@ -354,29 +407,12 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
       }
     }
     const CpuItem& item = run.bins.items[i];
-    const RasterPass& raster = rasterOf(run, item);
-    enterPass(at, scene, raster, work);
     if (!item.test) {
-      ++work.writes;
-      if (!evaluation.demandDriven) {
-        writeItem(state.depth, scene, run, item, work);
-        continue;
-      }
-      const BlockMask blocks = blocksUnder(state.depth, item.rect.within(inTile));
-      // At or behind everything stored under it (pending writes only add nearer keys): it
-      // changes nothing.
-      if (storedDecides<false>(state.depth, blocks, raster.sign, item.kLo)) continue;
-      // A pending write keeps its prepared pieces: a tile with this many (thousands of node boxes
-      // in one tile at a low resolution) has them drawn instead, which leaves the same depths.
-      if (state.pending.size() >= evaluation.mostPendingInTile) {
-        drawAllPending(at, scene, work);
-        clearPending(at);
-      }
-      addPending(at, scene, {blocks, item.kLo, item.kHi, objectOf(run, item), &run, i},
-                 raster.orderIndependent, evaluation.mostPendingInBlock, work);
-      if (state.pendingBlocks == 0) clearPending(at);
+      walkWrite(at, scene, run, i, evaluation, work);
       continue;
     }
+    const RasterPass& raster = rasterOf(run, item);
+    enterPass(at, scene, raster, work);
     ++work.tests;
     // (A gated test's gates are final here: its chain runs after theirs, CpuRasterBackend.)
     const QueryIndex gateBack =

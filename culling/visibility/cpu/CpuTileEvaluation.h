@@ -6,9 +6,11 @@
 // in front of, and everything stored lies behind, is decided by bounds; otherwise it is tested
 // against what the tile holds and, visible there, again in the blocks with pending writes it may
 // read, each drawn there first (prepared once per tile). In an order-independent pass a test of
-// object i reads no pending write of i's own. A write no undecided test reads is never drawn; the
-// answer is that of drawing every write and testing every piece, since stored depth is the nearest
-// of what was written and a pending write left out is behind the test wherever both have pixels.
+// object i reads no pending write of i's own. The walk stops after the tile's last test still open
+// (the writes after it are walked only if a later pass goes on in the buffer, before that pass'
+// items). A write no undecided test reads is never drawn; the answer is that of drawing every
+// write and testing every piece, since stored depth is the nearest of what was written and a
+// pending write left out is behind the test wherever both have pixels.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -193,6 +195,14 @@ struct CpuTileState {
   BlockMask pendingBlocks = 0;  // blocks with a write pending
   float sign = 0.f;             // the key order of the pass of its last item (0: none yet)
   std::uint64_t chain = 0;      // which chain's tile it holds (0: none)
+  // Where the walk of a run's last chain stopped, after the tile's last test still open: the
+  // writes from `from` on were not made pending, and are, before anything of a later pass that
+  // goes on in the buffer (evaluateTile). run == nullptr: none left.
+  struct Rest {
+    const CpuRun* run = nullptr;
+    std::uint32_t chain = 0;
+    std::uint32_t from = 0;
+  } rest;
 };
 
 // What tiles did, summed into VisibilityCounters.
