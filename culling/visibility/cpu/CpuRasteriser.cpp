@@ -753,7 +753,9 @@ std::size_t prepare(const CpuDepthBuffer& buffer, const RasterPass& pass, const 
         }
     }
     w.coverage = false;
-    w.piece = pieces[i];
+    // (A small piece is drawn from its box and key bound alone, drawSetUp: its corners are not
+    // kept.)
+    if (!smallBox(pass, w.raster)) w.piece = pieces[i];
     ++n;
   }
   return n;

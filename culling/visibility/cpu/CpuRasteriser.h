@@ -99,7 +99,7 @@ struct PreparedWrite {
   TriangleRaster raster;
   BlockMask blocks = 0;
   bool coverage = false;
-  Piece piece;
+  Piece piece;  // kept only where step 2 may need it: not for a small piece (smallBox)
 };
 // The pieces with a pixel in the buffer's window, prepared, into out[0 ..]; returns how many.
 // (`extents`: the triangles', at most kMostTestPieces of them.)
