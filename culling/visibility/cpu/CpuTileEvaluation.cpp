@@ -49,6 +49,10 @@ const RasterPass& rasterOf(const CpuRun& run, const CpuItem& item) {
 std::uint32_t objectOf(const CpuRun& run, const CpuItem& item) {
   return run.recording.commands[item.command].object;
 }
+// How far back the answer gating a test item's answers lies (CpuAnswers::open; 0: not gated).
+QueryIndex gateBackOf(const CpuRun& run, const CpuItem& item) {
+  return run.recording.commands[item.command].gateBack;
+}
 
 // The pieces of an item that reach the buffer's window, in its pass' screen space.
 void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
@@ -318,7 +322,7 @@ void enterPass(TileAt tile, const CpuScene& scene, const RasterPass& raster, Cpu
 // A write item met in a tile's walk: drawn (plain evaluation), dropped where it changes nothing,
 // or made pending.
 void walkWrite(TileAt at, const CpuScene& scene, const CpuRun& run, std::uint32_t i,
-               const CpuEvaluation& evaluation, CpuTileWork& work) {
+               const PixelRect& inTile, const CpuEvaluation& evaluation, CpuTileWork& work) {
   CpuTileState& state = at.state;
   const CpuItem& item = run.bins.items[i];
   const RasterPass& raster = rasterOf(run, item);
@@ -328,7 +332,7 @@ void walkWrite(TileAt at, const CpuScene& scene, const CpuRun& run, std::uint32_
     writeItem(state.depth, scene, run, item, work);
     return;
   }
-  const BlockMask blocks = blocksUnder(state.depth, item.rect.within(tileRect(state.depth)));
+  const BlockMask blocks = blocksUnder(state.depth, item.rect.within(inTile));
   // At or behind everything stored under it (pending writes only add nearer keys): it changes
   // nothing.
   if (storedDecides<false>(state.depth, blocks, raster.sign, item.kLo)) return;
@@ -376,7 +380,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     const std::span<const std::uint32_t> left = rest.run->bins.chains[rest.chain].itemsOf(tile);
     for (std::size_t n = rest.from; n < left.size(); ++n)
       if (const CpuItem& item = rest.run->bins.items[left[n]]; !item.test)
-        walkWrite(at, scene, *rest.run, left[n], evaluation, work);
+        walkWrite(at, scene, *rest.run, left[n], inTile, evaluation, work);
   }
   std::span<const std::uint32_t> items = run.bins.chains[chain].itemsOf(tile);
   // Nothing after the tile's last test still open can change an answer, so the walk stops there
@@ -387,8 +391,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     std::size_t end = items.size();
     for (; end > 0; --end) {
       const CpuItem& item = run.bins.items[items[end - 1]];
-      if (item.test && !answered(item, answers, run.recording.commands[item.command].gateBack))
-        break;
+      if (item.test && !answered(item, answers, gateBackOf(run, item))) break;
     }
     if (end < items.size() && chain + 1 == run.bins.chainCount)
       state.rest = {&run, chain, static_cast<std::uint32_t>(end)};
@@ -408,15 +411,14 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     }
     const CpuItem& item = run.bins.items[i];
     if (!item.test) {
-      walkWrite(at, scene, run, i, evaluation, work);
+      walkWrite(at, scene, run, i, inTile, evaluation, work);
       continue;
     }
     const RasterPass& raster = rasterOf(run, item);
     enterPass(at, scene, raster, work);
     ++work.tests;
     // (A gated test's gates are final here: its chain runs after theirs, CpuRasterBackend.)
-    const QueryIndex gateBack =
-        evaluation.earlyOut ? run.recording.commands[item.command].gateBack : QueryIndex{0};
+    const QueryIndex gateBack = evaluation.earlyOut ? gateBackOf(run, item) : QueryIndex{0};
     if (evaluation.earlyOut && answered(item, answers, gateBack)) {
       ++work.testsSkipped;
       continue;
