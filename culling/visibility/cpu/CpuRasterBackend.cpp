@@ -116,11 +116,13 @@ void CpuRasterBackend::beginPass(const ViewSpec& view, DepthUse depth) {
                      std::to_string(kMaxResolution) + " (the CPU rasteriser's largest buffer)");
   setup_ = setup;
   worldToKey_ = worldToKeyOf(setup);
-  CpuRecording& recording = open_->recording;
   sequence_.begin(view, depth);
   CpuPass pass = passFor(setup);
   // Its SharedFirst already ran: it goes on in the buffer that pass left.
-  pass.continues = depth == DepthUse::SharedSecond && recording.passes.empty();
+  const bool first = open_->recording.passes.empty();
+  pass.continues = depth == DepthUse::SharedSecond && first;
+  if (first && !pass.continues) reuseRetainedRun();
+  CpuRecording& recording = open_->recording;
   pass.firstCommand = static_cast<std::uint32_t>(recording.commands.size());
   recording.passes.push_back(pass);
   inPass_ = true;
@@ -368,6 +370,18 @@ std::shared_ptr<CpuRun> CpuRasterBackend::freshRun() {
   }
   run->recording.clear();
   return run;
+}
+
+void CpuRasterBackend::reuseRetainedRun() {
+  // The buffer the last run left is not gone on in: its runs are free now, not at the next flush,
+  // and the open (still empty) recording takes the one of them last run, whose tables are as
+  // large as a recording like this one needed. Otherwise two runs' tables would alternate and
+  // each grow to the largest recording, on fresh pages.
+  if (retained_.runs.empty()) return;
+  releaseRetained();
+  if (spareRuns_.empty() || !open_->recording.empty()) return;
+  std::swap(open_, spareRuns_.back());
+  open_->recording.clear();
 }
 
 void CpuRasterBackend::releaseRetained() {

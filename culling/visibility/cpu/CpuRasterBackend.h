@@ -97,6 +97,9 @@ class CpuRasterBackend final : public VisibilityBackend {
   [[nodiscard]] CpuPass passFor(const DepthPassSetup& setup) const;
   [[nodiscard]] std::shared_ptr<CpuRun> freshRun();
   void releaseRetained();
+  // Before a recording's first pass that starts a fresh buffer: frees the retained runs and
+  // records into the last of them.
+  void reuseRetainedRun();
 
   VisibilityOptions options_;
   int threads_ = 1;
