@@ -249,11 +249,25 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
 
 constexpr std::uint32_t kItemsPerTask = 512;
 
+// Whether a test item can change no answer any more: each of its answers found occluded, or its
+// gate's (CpuCommand::gateBack). `answers` are indexed by query.
+bool closedTest(const CpuRecording& recording, const CpuItem& item, const std::uint8_t* answers) {
+  if (!item.test) return false;
+  const QueryIndex gateBack = recording.commands[item.command].gateBack;
+  const std::uint32_t n = item.answerEach ? item.count : 1;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const QueryIndex q = item.answer + i;
+    if (answers[q] != 0 && (gateBack == 0 || answers[q - gateBack] != 0)) return false;
+  }
+  return true;
+}
+
 // A chain's items listed per tile, in issue order: each run of items counts its
 // (item, tile) entries per tile, the runs' counts in order give where each run writes in a tile's
-// list, and each run writes its own.
+// list, and each run writes its own. With `answers`, closed tests are left out (closedTest); the
+// entries they would have had are counted in `leftOut`.
 void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_arena* arena,
-              CpuChain& chain) {
+              const std::uint8_t* answers, CpuChain& chain, std::uint64_t& leftOut) {
   const std::uint32_t firstCommand = recording.passes[chain.firstPass].firstCommand;
   const std::uint32_t endCommand = recording.passes[chain.endPass - 1].endCommand;
   const std::uint32_t firstItem = bins.firstItem[firstCommand];
@@ -283,13 +297,25 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_aren
     const std::uint32_t i0 = firstItem + static_cast<std::uint32_t>(run) * perRun;
     const std::uint32_t i1 = std::min(endItem, i0 + perRun);
     std::uint32_t* at = chain.fill.data() + run * tiles;
-    for (std::uint32_t i = i0; i < i1; ++i)
-      if (!bins.items[i].rect.empty())
-        forTiles(bins.items[i], [&](std::size_t t) { visit(i, at[t]); });
+    std::uint64_t out = 0;
+    for (std::uint32_t i = i0; i < i1; ++i) {
+      const CpuItem& item = bins.items[i];
+      if (item.rect.empty()) continue;
+      if (answers != nullptr && closedTest(recording, item, answers)) {
+        out += static_cast<std::uint64_t>(tileOf[item.rect.x1] - tileOf[item.rect.x0] + 1) *
+               (tileOf[item.rect.y1] - tileOf[item.rect.y0] + 1);
+        continue;
+      }
+      forTiles(item, [&](std::size_t t) { visit(i, at[t]); });
+    }
+    return out;
   };
   chain.fill.assign(runs * tiles, 0);
-  forEachIndex(arena, runs,
-               [&](std::size_t r) { eachItem(r, [](std::uint32_t, std::uint32_t& n) { ++n; }); });
+  std::vector<std::uint64_t> outOfRun(runs, 0);
+  forEachIndex(arena, runs, [&](std::size_t r) {
+    outOfRun[r] = eachItem(r, [](std::uint32_t, std::uint32_t& n) { ++n; });
+  });
+  for (const std::uint64_t n : outOfRun) leftOut += n;
   chain.tilesUsed.clear();
   std::uint32_t entries = 0;
   for (std::size_t t = 0; t < tiles; ++t) {
@@ -387,8 +413,17 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
     forEachIndex(arena, end - first, [&](std::size_t t) { makeTask(first + t); });
     first = end;
   }
-  forEachIndex(arena, chains,
-               [&](std::size_t c) { binChain(recording, bins, arena, bins.chains[c]); });
+}
+
+std::uint64_t binChains(const CpuRecording& recording, CpuBins& bins, std::size_t first,
+                        std::size_t end, tbb::task_arena* arena, const std::uint8_t* answers) {
+  std::vector<std::uint64_t> leftOut(end - first, 0);
+  forEachIndex(arena, end - first, [&](std::size_t c) {
+    binChain(recording, bins, arena, answers, bins.chains[first + c], leftOut[c]);
+  });
+  std::uint64_t total = 0;
+  for (const std::uint64_t n : leftOut) total += n;
+  return total;
 }
 
 }  // namespace cdb

@@ -3,7 +3,8 @@
 // kChunkTriangles triangles, or one box), each item gets the pixel rectangle and the key range
 // its pixels can have (from a box in its object's frame, so no triangle is transformed), and the
 // items of each chain of passes sharing one depth buffer are listed per screen tile, in issue
-// order. A tile's list is all CpuTileEvaluation needs to evaluate that tile on its own.
+// order (a chain whose tests are gated by an earlier chain's, once that one ran). A tile's list
+// is all CpuTileEvaluation needs to evaluate that tile on its own.
 #include <tbb/task_arena.h>
 
 #include <array>
@@ -101,12 +102,20 @@ struct CpuRun {
   return (resolution + tileSize - 1) / tileSize;
 }
 
-// Bins the (closed) recording; its commands' meshes are the scene's, `bounds` their
-// CpuMeshBounds, `vertices` its vertex sets (assigned: their part bounds are made here). Tiles are
-// `tileSize` pixels (0: one tile the whole frame, rounded up to a block); a chain that continues a
-// buffer keeps that buffer's `continuedTileSize`. Runs on `arena` when given.
+// Makes the (closed) recording's items and chains, their tiles' lists not yet (binChains); its
+// commands' meshes are the scene's, `bounds` their CpuMeshBounds, `vertices` its vertex sets
+// (assigned: their part bounds are made here). Tiles are `tileSize` pixels (0: one tile the whole
+// frame, rounded up to a block); a chain that continues a buffer keeps that buffer's
+// `continuedTileSize`. Runs on `arena` when given.
 void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
                   const CpuScreenVertices& vertices, int tileSize, int continuedTileSize,
                   tbb::task_arena* arena, CpuBins& bins);
+
+// Lists the items of chains [first, end) per tile. With `answers` (the fetch's answers so far,
+// indexed by query), a test none of whose answers is open any more (each found occluded, or its
+// gate's: CpuCommand::gateBack) is left out, as evaluating it could change nothing (a chain binned
+// after the chains holding its tests' gates ran). Returns the (item, tile) entries left out.
+std::uint64_t binChains(const CpuRecording& recording, CpuBins& bins, std::size_t first,
+                        std::size_t end, tbb::task_arena* arena, const std::uint8_t* answers);
 
 }  // namespace cdb

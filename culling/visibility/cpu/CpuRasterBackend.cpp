@@ -458,6 +458,13 @@ void CpuRasterBackend::flush() {
   for (std::uint32_t phaseStart = 0; phaseStart < chainCount;) {
     std::uint32_t phaseEnd = phaseStart + 1;
     while (phaseEnd < chainCount && !startsPhase(phaseEnd, phaseStart)) ++phaseEnd;
+    // A later phase's chains are binned once the phases before ran: tests their gates (or other
+    // tiles) closed by then are left out of the tiles' lists, counted as tested and skipped.
+    const bool leaveClosedOut = phaseStart > 0 && evaluation_.earlyOut;
+    const std::uint64_t leftOut = binChains(recording, run.bins, phaseStart, phaseEnd, arena,
+                                            leaveClosedOut ? answers_.data() : nullptr);
+    counters_.tileTests += leftOut;
+    counters_.tileTestsSkipped += leftOut;
     units_.clear();
     for (std::uint32_t c = phaseStart; c < phaseEnd; ++c)
       for (const std::uint32_t t : chains[c].tilesUsed) units_.emplace_back(c, t);
