@@ -374,9 +374,9 @@ std::shared_ptr<CpuRun> CpuRasterBackend::freshRun() {
 
 void CpuRasterBackend::reuseRetainedRun() {
   // The buffer the last run left is not gone on in: its runs are free now, not at the next flush,
-  // and the open (still empty) recording takes the one of them last run, whose tables are as
-  // large as a recording like this one needed. Otherwise two runs' tables would alternate and
-  // each grow to the largest recording, on fresh pages.
+  // and the open (still empty) recording is made in the run retained last, whose tables are as
+  // large as a recording like the last one needed. Otherwise two runs would alternate and each
+  // grow its tables to the largest recording, on fresh pages.
   if (retained_.runs.empty()) return;
   releaseRetained();
   if (spareRuns_.empty() || !open_->recording.empty()) return;
