@@ -104,7 +104,8 @@ inline constexpr std::array kFrameColumns = {
     FrameColumn{"tile_tests_by_bounds", &FrameRecord::tileTestsByBounds,
                 "of tile_tests, decided by bounds without a pixel"},
     FrameColumn{"tile_tests_skipped", &FrameRecord::tileTestsSkipped,
-                "of tile_tests, skipped: another tile had found the piece occluded"},
+                "of tile_tests, skipped: the piece's answers closed already (found occluded in "
+                "another tile, or its gate's), passed over in the walk or left out at binning"},
     FrameColumn{"tile_writes", &FrameRecord::tileWrites,
                 "depth writes of a piece in a screen tile it may reach (cpu; 0 elsewhere)"},
     FrameColumn{"tile_writes_drawn", &FrameRecord::tileWritesDrawn,

@@ -1,7 +1,7 @@
 """What the visibility backend did per frame, from frames.csv's work counters: draws and tests issued
 (a chain of them costs a GPU more than their pixels: CULLIDE's ~4n draws per axis against
 cullide_oi's few), pixels rasterised by tests and by writes, and, for a backend that evaluates screen tiles on demand (cpu), how many tests of
-a piece in a tile were decided by bounds or skipped (another tile had found the piece occluded), and how
+a piece in a tile were decided by bounds or skipped (answered already: found occluded in another tile, or its gate), and how
 many depth writes were ever rasterised. These follow from the scene, the strategy and the resolution,
 not from the machine's speed; they say where the time can go. Where the backend timed its GPU work (gl-compute
 always), a second table gives the GPU time of each stage of its chain and the CPU's wait for the answers."""
