@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "culling/visibility/cpu/CpuAnswers.h"
 #include "culling/visibility/cpu/CpuBins.h"
 
 namespace cdb::bins_test {
@@ -67,7 +68,7 @@ struct Binned {
 };
 
 // Bins chain 0 plainly and chain 1 against `answers` (null: all listed).
-Binned binAgainst(const std::uint8_t* answers) {
+Binned binAgainst(std::uint8_t* answers) {
   CpuRecording r = twoGatedPasses();
   CpuScreenVertices vertices;
   vertices.assign(r, {});
@@ -76,7 +77,8 @@ Binned binAgainst(const std::uint8_t* answers) {
   EXPECT_EQ(bins.chainCount, 2u);
   EXPECT_EQ(binChains(r, bins, 0, 1, nullptr, nullptr), 0u);
   Binned out;
-  out.leftOut = binChains(r, bins, 1, 2, nullptr, answers);
+  const CpuAnswers shared(answers);
+  out.leftOut = binChains(r, bins, 1, 2, nullptr, answers != nullptr ? &shared : nullptr);
   const CpuChain& chain = bins.chains[1];
   for (std::uint32_t t = 0; t < static_cast<std::uint32_t>(chain.tilesX * chain.tilesX); ++t) {
     auto& items = out.tiles.emplace_back();
@@ -95,13 +97,13 @@ int writes(const std::vector<CpuItem>& items) {
 
 TEST(CpuBins, ClosedTestsAreLeftOutOfALaterChainsLists) {
   const Binned all = binAgainst(nullptr);
-  const std::uint8_t open[] = {1, 1, 1, 1};
+  std::uint8_t open[] = {1, 1, 1, 1};
   const Binned kept = binAgainst(open);
   // Box 0's pass-1 test found occluded: its gated pass-2 test (answer 2) is closed.
-  const std::uint8_t gateClosed[] = {0, 1, 1, 1};
+  std::uint8_t gateClosed[] = {0, 1, 1, 1};
   const Binned gated = binAgainst(gateClosed);
   // Box 1's own pass-2 answer already 0 (another tile found it occluded).
-  const std::uint8_t ownClosed[] = {1, 1, 1, 0};
+  std::uint8_t ownClosed[] = {1, 1, 1, 0};
   const Binned own = binAgainst(ownClosed);
   EXPECT_EQ(all.leftOut, 0u);
   EXPECT_EQ(kept.leftOut, 0u);

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/ArenaForEach.h"
+#include "culling/visibility/cpu/CpuAnswers.h"
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
 #include "culling/visibility/cpu/CpuPieces.h"
 
@@ -249,25 +250,12 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
 
 constexpr std::uint32_t kItemsPerTask = 512;
 
-// Whether a test item can change no answer any more: each of its answers found occluded, or its
-// gate's (CpuCommand::gateBack). `answers` are indexed by query.
-bool closedTest(const CpuRecording& recording, const CpuItem& item, const std::uint8_t* answers) {
-  if (!item.test) return false;
-  const QueryIndex gateBack = recording.commands[item.command].gateBack;
-  const std::uint32_t n = item.answerEach ? item.count : 1;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const QueryIndex q = item.answer + i;
-    if (answers[q] != 0 && (gateBack == 0 || answers[q - gateBack] != 0)) return false;
-  }
-  return true;
-}
-
 // A chain's items listed per tile, in issue order: each run of items counts its
 // (item, tile) entries per tile, the runs' counts in order give where each run writes in a tile's
-// list, and each run writes its own. With `answers`, closed tests are left out (closedTest); the
-// entries they would have had are counted in `leftOut`.
+// list, and each run writes its own. With `answers`, tests none of whose answers is open are left
+// out; the entries they would have had are counted in `leftOut`.
 void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_arena* arena,
-              const std::uint8_t* answers, CpuChain& chain, std::uint64_t& leftOut) {
+              const CpuAnswers* answers, CpuChain& chain, std::uint64_t& leftOut) {
   const std::uint32_t firstCommand = recording.passes[chain.firstPass].firstCommand;
   const std::uint32_t endCommand = recording.passes[chain.endPass - 1].endCommand;
   const std::uint32_t firstItem = bins.firstItem[firstCommand];
@@ -301,9 +289,9 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_aren
     for (std::uint32_t i = i0; i < i1; ++i) {
       const CpuItem& item = bins.items[i];
       if (item.rect.empty()) continue;
-      if (answers != nullptr && closedTest(recording, item, answers)) {
-        out += static_cast<std::uint64_t>(tileOf[item.rect.x1] - tileOf[item.rect.x0] + 1) *
-               (tileOf[item.rect.y1] - tileOf[item.rect.y0] + 1);
+      if (answers != nullptr && item.test &&
+          answered(item, *answers, recording.commands[item.command].gateBack)) {
+        forTiles(item, [&](std::size_t) { ++out; });
         continue;
       }
       forTiles(item, [&](std::size_t t) { visit(i, at[t]); });
@@ -416,7 +404,7 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
 }
 
 std::uint64_t binChains(const CpuRecording& recording, CpuBins& bins, std::size_t first,
-                        std::size_t end, tbb::task_arena* arena, const std::uint8_t* answers) {
+                        std::size_t end, tbb::task_arena* arena, const CpuAnswers* answers) {
   std::vector<std::uint64_t> leftOut(end - first, 0);
   forEachIndex(arena, end - first, [&](std::size_t c) {
     binChain(recording, bins, arena, answers, bins.chains[first + c], leftOut[c]);

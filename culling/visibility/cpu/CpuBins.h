@@ -111,11 +111,13 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
                   const CpuScreenVertices& vertices, int tileSize, int continuedTileSize,
                   tbb::task_arena* arena, CpuBins& bins);
 
-// Lists the items of chains [first, end) per tile. With `answers` (the fetch's answers so far,
-// indexed by query), a test none of whose answers is open any more (each found occluded, or its
-// gate's: CpuCommand::gateBack) is left out, as evaluating it could change nothing (a chain binned
-// after the chains holding its tests' gates ran). Returns the (item, tile) entries left out.
+class CpuAnswers;
+
+// Lists the items of chains [first, end) per tile. With `answers` (the fetch's answers so far), a
+// test none of whose answers is open any more (each found occluded, or its gate's:
+// CpuCommand::gateBack) is left out, as evaluating it could change nothing (a chain binned after
+// the chains holding its tests' gates ran). Returns the (item, tile) entries left out.
 std::uint64_t binChains(const CpuRecording& recording, CpuBins& bins, std::size_t first,
-                        std::size_t end, tbb::task_arena* arena, const std::uint8_t* answers);
+                        std::size_t end, tbb::task_arena* arena, const CpuAnswers* answers);
 
 }  // namespace cdb

@@ -462,7 +462,7 @@ void CpuRasterBackend::flush() {
     // tiles) closed by then are left out of the tiles' lists, counted as tested and skipped.
     const bool leaveClosedOut = phaseStart > 0 && evaluation_.earlyOut;
     const std::uint64_t leftOut = binChains(recording, run.bins, phaseStart, phaseEnd, arena,
-                                            leaveClosedOut ? answers_.data() : nullptr);
+                                            leaveClosedOut ? &answers : nullptr);
     counters_.tileTests += leftOut;
     counters_.tileTestsSkipped += leftOut;
     units_.clear();

@@ -288,14 +288,6 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
   return left;
 }
 
-// Whether no answer of a test item is open any more (each found occluded, or its gate's).
-bool answered(const CpuItem& item, CpuAnswers answers, QueryIndex gateBack) {
-  const std::uint32_t n = item.answerEach ? item.count : 1;
-  for (std::uint32_t i = 0; i < n; ++i)
-    if (answers.open(item.answer + i, gateBack)) return false;
-  return true;
-}
-
 // A pass of the other depth order goes on in the buffer (a SharedSecond pass after its
 // SharedFirst). Writes pending from before are older than everything to come; when all their keys
 // lie behind the new pass' whole range, no test of it can find them in front and every write of

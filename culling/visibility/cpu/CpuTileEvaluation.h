@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/GrowOnlyArray.h"
+#include "culling/visibility/cpu/CpuAnswers.h"
 #include "culling/visibility/cpu/CpuBins.h"
 #include "culling/visibility/cpu/CpuDepthBuffer.h"
 #include "culling/visibility/cpu/CpuMeshBounds.h"
@@ -214,27 +215,6 @@ struct CpuTileWork {
   std::uint64_t writes = 0;         // (write item, tile) visits
   std::uint64_t writesRasterised = 0;
   CpuTileWork& operator+=(const CpuTileWork& o);
-};
-
-// The answers all tiles of a recording share, 1 = fully visible so far. Tiles on other threads
-// only ever clear an answer, so it ends as the AND over every tile whatever the order.
-class CpuAnswers {
- public:
-  explicit CpuAnswers(std::uint8_t* data) : data_(data) {}
-  [[nodiscard]] bool visible(QueryIndex q) const {
-    return std::atomic_ref<std::uint8_t>(data_[q]).load(std::memory_order_relaxed) != 0;
-  }
-  // Whether answer q can still change the fetched answers: visible so far, and so is its gate,
-  // the answer `gateBack` before it (0: not gated).
-  [[nodiscard]] bool open(QueryIndex q, QueryIndex gateBack) const {
-    return visible(q) && (gateBack == 0 || visible(q - gateBack));
-  }
-  void occlude(QueryIndex q) const {
-    std::atomic_ref<std::uint8_t>(data_[q]).store(0, std::memory_order_relaxed);
-  }
-
- private:
-  std::uint8_t* data_;
 };
 
 // Makes `state` tile `tile` of a fresh buffer of the chain `chainId` (every pixel at
