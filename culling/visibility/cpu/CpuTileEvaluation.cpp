@@ -113,7 +113,7 @@ struct TileAt {
   CpuPreparedScratch& prepared;
 };
 
-void drawPending(TileAt tile, const CpuScene& scene, CpuPendingWrite& p, BlockMask blocks,
+void drawPending(const TileAt& tile, const CpuScene& scene, CpuPendingWrite& p, BlockMask blocks,
                  CpuTileWork& work) {
   CpuTileState& state = tile.state;
   const CpuItem& item = p.run->bins.items[p.item];
@@ -130,7 +130,7 @@ void drawPending(TileAt tile, const CpuScene& scene, CpuPendingWrite& p, BlockMa
   p.remaining &= ~blocks;
 }
 
-void drawAllPending(TileAt tile, const CpuScene& scene, CpuTileWork& work) {
+void drawAllPending(const TileAt& tile, const CpuScene& scene, CpuTileWork& work) {
   for (CpuPendingWrite& p : tile.state.pending)
     if (p.remaining != 0) drawPending(tile, scene, p, p.remaining, work);
 }
@@ -151,7 +151,7 @@ void clearPending(CpuTileState& state) {
 }
 
 // No write pending any more, nor their prepared pieces.
-void clearPending(TileAt tile) {
+void clearPending(const TileAt& tile) {
   clearPending(tile.state);
   tile.prepared.clear();
 }
@@ -159,13 +159,13 @@ void clearPending(TileAt tile) {
 // The end of a tile's evaluation: the writes left pending give their prepared pieces back (a
 // later fetch going on in the tile prepares them again), so the thread's storage serves its next
 // tile.
-void releasePrepared(TileAt tile) {
+void releasePrepared(const TileAt& tile) {
   for (CpuPendingWrite& p : tile.state.pending) p.firstPrepared = CpuPendingWrite::kNotSetUp;
   tile.prepared.clear();
 }
 
 // Draws every write pending in block `b` there.
-void drawBlockPending(TileAt tile, const CpuScene& scene, std::size_t b, CpuTileWork& work) {
+void drawBlockPending(const TileAt& tile, const CpuScene& scene, std::size_t b, CpuTileWork& work) {
   tile.state.pendingIn.forEach(b, [&](std::uint32_t i) {
     drawPending(tile, scene, tile.state.pending[i], BlockMask{1} << b, work);
   });
@@ -174,7 +174,7 @@ void drawBlockPending(TileAt tile, const CpuScene& scene, std::size_t b, CpuTile
 
 // A write made pending in its blocks (of an order-independent pass: `orderIndependent`); a block
 // with `mostInBlock` pending has them drawn instead, which leaves the same depths.
-void addPending(TileAt tile, const CpuScene& scene, const CpuPendingWrite& write,
+void addPending(const TileAt& tile, const CpuScene& scene, const CpuPendingWrite& write,
                 bool orderIndependent, std::size_t mostInBlock, CpuTileWork& work) {
   CpuTileState& state = tile.state;
   const auto index = static_cast<std::uint32_t>(state.pending.size());
@@ -293,7 +293,8 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
 // lie behind the new pass' whole range, no test of it can find them in front and every write of
 // it overwrites them, so they are dropped; otherwise they are drawn now, in order, before
 // anything of the new pass.
-void enterPass(TileAt tile, const CpuScene& scene, const RasterPass& raster, CpuTileWork& work) {
+void enterPass(const TileAt& tile, const CpuScene& scene, const RasterPass& raster,
+               CpuTileWork& work) {
   CpuTileState& state = tile.state;
   if (state.sign == raster.sign) return;
   if (state.sign != 0.f) {
@@ -313,7 +314,7 @@ void enterPass(TileAt tile, const CpuScene& scene, const RasterPass& raster, Cpu
 
 // A write item met in a tile's walk: drawn (plain evaluation), dropped where it changes nothing,
 // or made pending.
-void walkWrite(TileAt at, const CpuScene& scene, const CpuRun& run, std::uint32_t i,
+void walkWrite(const TileAt& at, const CpuScene& scene, const CpuRun& run, std::uint32_t i,
                const PixelRect& inTile, const CpuEvaluation& evaluation, CpuTileWork& work) {
   CpuTileState& state = at.state;
   const CpuItem& item = run.bins.items[i];
