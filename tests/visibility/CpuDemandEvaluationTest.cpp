@@ -342,6 +342,45 @@ TEST(CpuGatedTests, BoxesOfTheOppositeViewKeepTheirGate) {
   }
 }
 
+// One command's writes walked with no test between them are pending as one group (CpuPendingGroup)
+// in their blocks' lists; a test that can see some of them has only those drawn. Ten boxes of one
+// object written one behind the other over the same pixels, then a thin box of another object
+// tested between the fifth and the sixth: it is occluded (the five in front drawn), and only those
+// five of the ten writes are drawn, as with the plain evaluation's answers.
+TEST(CpuPendingGroups, ATestDrawsOnlyTheWritesOfAGroupThatCanLieInFrontOfIt) {
+  const SceneGeometry scene = bumpySpheres();
+  const std::vector<Pose> poses(scene.objectCount());  // identities
+  std::vector<OrientedBox> layers(10);
+  for (std::size_t b = 0; b < layers.size(); ++b) {
+    layers[b].center = Eigen::Vector3d(0.0, 0.0, -0.9 + 0.2 * static_cast<double>(b));
+    layers[b].halfExtents = Eigen::Vector3d(0.6, 0.6, 0.02);
+  }
+  OrientedBox between;
+  between.center = Eigen::Vector3d(0.0, 0.0, 0.0);
+  between.halfExtents = Eigen::Vector3d(0.2, 0.2, 0.02);
+  const Stream stream = [&](CpuRasterBackend& backend, Outcome& out) {
+    const Aabb bounds(Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0));
+    for (const double direction : {1.0, -1.0}) {
+      backend.beginPass(ViewSpec{Eigen::Vector3d(0.0, 0.0, direction), bounds, 64},
+                        DepthUse::Fresh);
+      backend.writeBoxes(0, layers);
+      (void)backend.queryBoxes(1, {&between, 1});
+      fetchInto(backend, out);
+    }
+  };
+  const Outcome plain = run(scene, poses, stream, true, kPlain, 1);
+  for (const int threads : {1, 2}) {
+    SCOPED_TRACE(testing::Message() << threads << " threads");
+    const Outcome demand = run(scene, poses, stream, true, CpuEvaluation{}, threads);
+    EXPECT_EQ(demand.answers, plain.answers);
+    ASSERT_EQ(demand.answers.size(), 2u);
+    for (const auto& answers : demand.answers) EXPECT_EQ(answers, std::vector<std::uint8_t>{0});
+    // One tile (64 px), both views: five writes in front each time.
+    EXPECT_EQ(demand.counters.tileWrites, 20u);
+    EXPECT_EQ(demand.counters.tileWritesRasterised, 10u);
+  }
+}
+
 // A wall (a square facing the view) written first, then small spheres scattered over and around
 // it, some in front, some behind, some through it, each tested and written, then each tested
 // again: many tests decided by bounds, and many pieces whose bounds end near a tile's edge.

@@ -130,6 +130,14 @@ void drawPending(const TileAt& tile, const CpuScene& scene, CpuPendingWrite& p, 
   p.remaining &= ~blocks;
 }
 
+// Draws the writes of group `g` pending in block `bit` there.
+void drawGroup(const TileAt& tile, const CpuScene& scene, const CpuPendingGroup& g, BlockMask bit,
+               CpuTileWork& work) {
+  for (std::uint32_t w = g.firstWrite; w < g.endWrite; ++w)
+    if (CpuPendingWrite& p = tile.state.pending[w]; (p.remaining & bit) != 0)
+      drawPending(tile, scene, p, bit, work);
+}
+
 void drawAllPending(const TileAt& tile, const CpuScene& scene, CpuTileWork& work) {
   for (CpuPendingWrite& p : tile.state.pending)
     if (p.remaining != 0) drawPending(tile, scene, p, p.remaining, work);
@@ -148,6 +156,8 @@ void clearPending(CpuTileState& state) {
   for (BlockMask m = state.pendingBlocks; m != 0; m &= m - 1)
     emptyBlock(state, static_cast<std::size_t>(std::countr_zero(m)));
   state.pending.clear();
+  state.groups.clear();
+  state.groupOpen = false;
 }
 
 // No write pending any more, nor their prepared pieces.
@@ -166,39 +176,69 @@ void releasePrepared(const TileAt& tile) {
 
 // Draws every write pending in block `b` there.
 void drawBlockPending(const TileAt& tile, const CpuScene& scene, std::size_t b, CpuTileWork& work) {
-  tile.state.pendingIn.forEach(b, [&](std::uint32_t i) {
-    drawPending(tile, scene, tile.state.pending[i], BlockMask{1} << b, work);
+  tile.state.pendingIn.forEach(b, [&](std::uint32_t g) {
+    drawGroup(tile, scene, tile.state.groups[g], BlockMask{1} << b, work);
   });
   emptyBlock(tile.state, b);
 }
 
-// A write made pending in its blocks (of an order-independent pass: `orderIndependent`); a block
-// with `mostInBlock` pending has them drawn instead, which leaves the same depths.
-void addPending(const TileAt& tile, const CpuScene& scene, const CpuPendingWrite& write,
-                bool orderIndependent, std::size_t mostInBlock, CpuTileWork& work) {
+// The open group of pending writes put in its blocks' lists; a block with `mostInBlock` groups has
+// them drawn instead, which leaves the same depths. Before anything reads the lists: a test, the
+// end of the walk.
+void closeGroup(const TileAt& tile, const CpuScene& scene, std::size_t mostInBlock,
+                CpuTileWork& work) {
   CpuTileState& state = tile.state;
-  const auto index = static_cast<std::uint32_t>(state.pending.size());
-  state.pending.push_back(write);
-  state.pendingBlocks |= write.remaining;
+  if (!state.groupOpen) return;
+  state.groupOpen = false;
+  const auto index = static_cast<std::uint32_t>(state.groups.size() - 1);
+  const CpuPendingGroup& group = state.groups[index];
+  state.pendingBlocks |= group.blocks;
   // (Drawing a full block touches that block's depths and list only.)
-  for (BlockMask m = write.remaining; m != 0; m &= m - 1) {
+  for (BlockMask m = group.blocks; m != 0; m &= m - 1) {
     const auto b = static_cast<std::size_t>(std::countr_zero(m));
     state.pendingIn.push(b, index);
-    if (orderIndependent)
-      state.pendingOthers[b].add(state.pendingNearest[b], write.kLo, write.object);
-    state.pendingNearest[b] = std::min(state.pendingNearest[b], write.kLo);
+    if (group.orderIndependent)
+      state.pendingOthers[b].add(state.pendingNearest[b], group.kLo, group.object);
+    state.pendingNearest[b] = std::min(state.pendingNearest[b], group.kLo);
     if (state.pendingIn.size(b) >= mostInBlock) drawBlockPending(tile, scene, b, work);
   }
+  if (state.pendingBlocks == 0) clearPending(tile);
 }
 
-// Whether pending write `p` can lie in front of a key `zHi` of a test of `object`: in an
+// A write made pending: it joins the open group when that holds writes of its command (no test was
+// walked since: CpuPendingGroup), else the open group is closed and it starts one.
+void addPending(const TileAt& tile, const CpuScene& scene, const CpuPendingWrite& write,
+                std::uint32_t command, bool orderIndependent, std::size_t mostInBlock,
+                CpuTileWork& work) {
+  CpuTileState& state = tile.state;
+  if (state.groupOpen &&
+      (state.groups.back().command != command || state.groups.back().run != write.run))
+    closeGroup(tile, scene, mostInBlock, work);
+  if (!state.groupOpen) {
+    const auto first = static_cast<std::uint32_t>(state.pending.size());
+    state.groups.push_back({.object = write.object,
+                            .command = command,
+                            .orderIndependent = orderIndependent,
+                            .run = write.run,
+                            .firstWrite = first,
+                            .endWrite = first});
+    state.groupOpen = true;
+  }
+  CpuPendingGroup& group = state.groups.back();
+  state.pending.push_back(write);
+  group.blocks |= write.remaining;
+  group.kLo = std::min(group.kLo, write.kLo);
+  group.endWrite = static_cast<std::uint32_t>(state.pending.size());
+}
+
+// Whether pending group `g` can lie in front of a key `zHi` of a test of `object`: in an
 // order-independent pass a test reads no write of its own object.
-bool canOcclude(const CpuPendingWrite& p, float zHi, bool orderIndependent, std::uint32_t object) {
-  return p.kLo <= zHi && !(orderIndependent && p.object == object);
+bool canOcclude(const CpuPendingGroup& g, float zHi, bool orderIndependent, std::uint32_t object) {
+  return g.kLo <= zHi && !(orderIndependent && g.object == object);
 }
 
-// The nearest key of the writes pending in block `b` that a test of `object` reads (in an
-// order-independent pass not its own: when it has the nearest key, the other objects' nearest).
+// A key no farther than the nearest of the writes pending in block `b` that a test of `object`
+// reads (in an order-independent pass not its own: if it has the nearest key, the others').
 float nearestRead(const CpuTileState& state, std::size_t b, bool orderIndependent,
                   std::uint32_t object) {
   const CpuPendingOthers& others = state.pendingOthers[b];
@@ -271,16 +311,30 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
   float nearest = std::numeric_limits<float>::infinity();
   CpuPendingOthers others;
   state.pendingIn.keepIf(block, [&](std::uint32_t i) {
-    CpuPendingWrite& p = state.pending[i];
-    if (!canOcclude(p, zHi, t.orderIndependent, t.object)) {
+    const CpuPendingGroup& g = state.groups[i];
+    if (!canOcclude(g, zHi, t.orderIndependent, t.object)) {
       // Behind this piece; maybe not behind a later one of the test.
-      left = left || canOcclude(p, t.item.kHi, t.orderIndependent, t.object);
-      if (t.orderIndependent) others.add(nearest, p.kLo, p.object);
-      nearest = std::min(nearest, p.kLo);
+      left = left || canOcclude(g, t.item.kHi, t.orderIndependent, t.object);
+      if (t.orderIndependent) others.add(nearest, g.kLo, g.object);
+      nearest = std::min(nearest, g.kLo);
       return true;
     }
-    drawPending(t.tile, t.scene, p, bit, t.work);
-    return false;
+    // Those of its writes pending here that can lie in front are drawn, the others stay (and the
+    // block's nearest key is theirs).
+    float stays = std::numeric_limits<float>::infinity();
+    for (std::uint32_t w = g.firstWrite; w < g.endWrite; ++w) {
+      CpuPendingWrite& p = state.pending[w];
+      if ((p.remaining & bit) == 0) continue;
+      if (p.kLo <= zHi)
+        drawPending(t.tile, t.scene, p, bit, t.work);
+      else
+        stays = std::min(stays, p.kLo);
+    }
+    if (stays == std::numeric_limits<float>::infinity()) return false;
+    left = left || stays <= t.item.kHi;
+    if (t.orderIndependent) others.add(nearest, stays, g.object);
+    nearest = std::min(nearest, stays);
+    return true;
   });
   state.pendingNearest[block] = nearest;
   state.pendingOthers[block] = others;
@@ -335,9 +389,8 @@ void walkWrite(const TileAt& at, const CpuScene& scene, const CpuRun& run, std::
     drawAllPending(at, scene, work);
     clearPending(at);
   }
-  addPending(at, scene, {blocks, item.kLo, item.kHi, objectOf(run, item), &run, i},
+  addPending(at, scene, {blocks, item.kLo, item.kHi, objectOf(run, item), &run, i}, item.command,
              raster.orderIndependent, evaluation.mostPendingInBlock, work);
-  if (state.pendingBlocks == 0) clearPending(at);
 }
 
 }  // namespace
@@ -419,6 +472,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
     const BlockMask blocks =
         evaluation.demandDriven ? blocksUnder(state.depth, item.rect.within(inTile)) : BlockMask{0};
     const std::uint32_t object = objectOf(run, item);
+    closeGroup(at, scene, evaluation.mostPendingInBlock, work);
     const BlockMask reading =
         blocksReadingPending(state, blocks, item.kHi, raster.orderIndependent, object);
     const bool readsPending = reading != 0;
@@ -444,6 +498,7 @@ void evaluateTile(CpuTileState& state, const CpuScene& scene, const CpuRun& run,
                work, &unresolved);
     if (state.pendingBlocks == 0) clearPending(at);
   }
+  closeGroup(at, scene, evaluation.mostPendingInBlock, work);
   releasePrepared(at);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Step 2 of running a recording: one screen tile of a chain (passes sharing a depth buffer)
 // evaluated on its own, on demand, walking the tile's items in issue order. A write is made
-// pending in the 8x8 blocks of its rectangle (dropped where it is behind everything stored). A
+// pending in the 8x8 blocks of its rectangle (dropped where it is behind everything stored); the
+// writes of one command walked with no test between them are listed in those blocks as one group. A
 // test another tile found occluded is skipped (the early-out); one that no pending write can lie
 // in front of, and everything stored lies behind, is decided by bounds; otherwise it is tested
 // against what the tile holds and, visible there, again in the blocks with pending writes it may
@@ -37,10 +38,11 @@ struct CpuEvaluation {
   int tileSize = 64;
   bool demandDriven = true;  // off: every write rasterised where it is drawn, every test tested
   bool earlyOut = true;      // a test found occluded in one tile is skipped in the others
-  // Writes left pending in one block, and in one tile, before those are drawn (a test scans the
-  // writes pending in its blocks, and a pending write keeps its prepared pieces; measured in
-  // docs/visibility-backends.md: a tile of env2's dragon pile gets tens of thousands of
-  // cullide_bvh's node boxes, and at 4,096 half of its writes' drawing was for the limit).
+  // Groups of pending writes listed in one block, and writes pending in one tile, before those are
+  // drawn (a test scans the groups listed in its blocks, and a pending write keeps its prepared
+  // pieces; measured in docs/visibility-backends.md: a tile of env2's dragon pile gets tens of
+  // thousands of cullide_bvh's node boxes, and at 4,096 half of its writes' drawing was for the
+  // limit).
   std::size_t mostPendingInBlock = 1024;
   std::size_t mostPendingInTile = 16384;
 };
@@ -64,6 +66,20 @@ struct CpuPendingWrite {
   std::uint32_t preparedCount = 0;
   bool quads = false;
   bool counted = false;  // in CpuTileWork::writesRasterised
+};
+
+// Consecutive writes of one command made pending in a tile's walk, with no test walked between
+// them: the block lists hold such a group once (its blocks the union of its writes', its nearest
+// key theirs), not each write; a test that can see it in a block draws those of its writes pending
+// there that can lie in front of the test.
+struct CpuPendingGroup {
+  BlockMask blocks = 0;
+  float kLo = std::numeric_limits<float>::infinity();
+  std::uint32_t object = 0;
+  std::uint32_t command = 0;
+  bool orderIndependent = false;  // its pass'
+  const CpuRun* run = nullptr;
+  std::uint32_t firstWrite = 0, endWrite = 0;  // its writes in CpuTileState::pending
 };
 
 // Prepared pieces of a tile's pending writes, set up in storage that only grows and never moves
@@ -165,7 +181,7 @@ class CpuBlockLists {
 struct CpuPendingOthers {
   std::uint32_t object = 0;
   float nearest = std::numeric_limits<float>::infinity();
-  // A write of `o` with key `k` joins a list whose nearest key was `key`.
+  // Writes of `o` with nearest key `k` join a list whose nearest key was `key`.
   void add(float key, float k, std::uint32_t o) {
     if (o == object) return;
     if (k < key) {  // (`key` is the nearest of all, and its object is not o)
@@ -180,12 +196,15 @@ struct CpuPendingOthers {
 struct CpuTileState {
   static constexpr int kBlocks = CpuBlockLists::kBlocks;  // at most, in a demand-driven tile
   CpuDepthBuffer depth;
-  // Writes not drawn everywhere yet, in issue order (an entry stays until nothing is pending), and
-  // per block of the tile those not drawn there yet (indices into `pending`, ascending) with the
-  // nearest key among them (+infinity: none), and in an order-independent pass the nearest of the
-  // other objects' (kept for every write there: such a pass clears, so a chain's passes are all
-  // order-independent or none are).
+  // Writes not drawn everywhere yet, in issue order (an entry stays until nothing is pending), in
+  // groups (CpuPendingGroup; the last one still open while `groupOpen`: in no block's list yet),
+  // and per block of the tile the groups with writes not drawn there yet (indices into `groups`,
+  // ascending) with a key no farther than the nearest of those writes (+infinity: none), and in an
+  // order-independent pass one for the other objects' (kept for every write there: such a pass
+  // clears, so a chain's passes are all order-independent or none are).
   std::vector<CpuPendingWrite> pending;
+  std::vector<CpuPendingGroup> groups;
+  bool groupOpen = false;
   CpuBlockLists pendingIn;
   std::array<float, kBlocks> pendingNearest = [] {
     std::array<float, kBlocks> none;
@@ -193,7 +212,7 @@ struct CpuTileState {
     return none;
   }();
   std::array<CpuPendingOthers, kBlocks> pendingOthers{};
-  BlockMask pendingBlocks = 0;  // blocks with a write pending
+  BlockMask pendingBlocks = 0;  // blocks in whose lists a group is
   float sign = 0.f;             // the key order of the pass of its last item (0: none yet)
   std::uint64_t chain = 0;      // which chain's tile it holds (0: none)
   // Where the walk of a run's last chain stopped, after the tile's last test still open: the
