@@ -127,11 +127,19 @@ ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox&
 }
 
 void boxPieces(const ScreenMatrix& cube, CpuCommand::Role role, bool conservative, CpuPieces& out) {
+  // The corners, bit for bit screenPoint(cube, +-1, +-1, +-1) (corner i: x, y, z = bits 0, 1, 2):
+  // a product by +-1 is exact, so each of its sums is formed from the signed columns in its order,
+  // shared between the corners that have it.
   std::array<Eigen::Vector3d, 8> corner;
-  for (int i = 0; i < 8; ++i) {
-    const ScreenPoint p =
-        screenPoint(cube, (i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
-    corner[i] = {p.x, p.y, p.k};
+  for (int row = 0; row < 2; ++row) {  // x, y: ((m0 x + m1 y) + m2 z) + m3
+    const double m0 = cube(row, 0), m1 = cube(row, 1), m2 = cube(row, 2), m3 = cube(row, 3);
+    const double xy[4] = {-m0 + -m1, m0 + -m1, -m0 + m1, m0 + m1};
+    for (int i = 0; i < 8; ++i) corner[i][row] = (xy[i & 3] + ((i & 4) ? m2 : -m2)) + m3;
+  }
+  {  // key: (m0 x + (m1 y + m2 z)) + m3
+    const double m0 = cube(2, 0), m1 = cube(2, 1), m2 = cube(2, 2), m3 = cube(2, 3);
+    const double yz[4] = {-m1 + -m2, m1 + -m2, -m1 + m2, m1 + m2};
+    for (int i = 0; i < 8; ++i) corner[i][2] = (((i & 1) ? m0 : -m0) + yz[i >> 1]) + m3;
   }
   const unsigned keep = decidingFaces(cube, role);
   out.areQuads = conservative;
