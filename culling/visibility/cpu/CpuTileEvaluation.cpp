@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <optional>
 #include <type_traits>
 #include <utility>
 
@@ -130,12 +131,20 @@ void drawPending(const TileAt& tile, const CpuScene& scene, CpuPendingWrite& p, 
   p.remaining &= ~blocks;
 }
 
-// Draws the writes of group `g` pending in block `bit` there.
-void drawGroup(const TileAt& tile, const CpuScene& scene, const CpuPendingGroup& g, BlockMask bit,
-               CpuTileWork& work) {
-  for (std::uint32_t w = g.firstWrite; w < g.endWrite; ++w)
-    if (CpuPendingWrite& p = tile.state.pending[w]; (p.remaining & bit) != 0)
+// Draws there the writes of group `g` pending in block `bit` (with `zHi`, only those whose nearest
+// key is at most zHi); returns the nearest key of those that stay pending there (+infinity: none).
+float drawGroup(const TileAt& tile, const CpuScene& scene, const CpuPendingGroup& g, BlockMask bit,
+                CpuTileWork& work, std::optional<float> zHi = std::nullopt) {
+  float stays = std::numeric_limits<float>::infinity();
+  for (std::uint32_t w = g.firstWrite; w < g.endWrite; ++w) {
+    CpuPendingWrite& p = tile.state.pending[w];
+    if ((p.remaining & bit) == 0) continue;
+    if (!zHi || p.kLo <= *zHi)
       drawPending(tile, scene, p, bit, work);
+    else
+      stays = std::min(stays, p.kLo);
+  }
+  return stays;
 }
 
 void drawAllPending(const TileAt& tile, const CpuScene& scene, CpuTileWork& work) {
@@ -321,15 +330,7 @@ bool resolveForTest(void* context, std::size_t block, float zHi) {
     }
     // Those of its writes pending here that can lie in front are drawn, the others stay (and the
     // block's nearest key is theirs).
-    float stays = std::numeric_limits<float>::infinity();
-    for (std::uint32_t w = g.firstWrite; w < g.endWrite; ++w) {
-      CpuPendingWrite& p = state.pending[w];
-      if ((p.remaining & bit) == 0) continue;
-      if (p.kLo <= zHi)
-        drawPending(t.tile, t.scene, p, bit, t.work);
-      else
-        stays = std::min(stays, p.kLo);
-    }
+    const float stays = drawGroup(t.tile, t.scene, g, bit, t.work, zHi);
     if (stays == std::numeric_limits<float>::infinity()) return false;
     left = left || stays <= t.item.kHi;
     if (t.orderIndependent) others.add(nearest, stays, g.object);
