@@ -18,7 +18,9 @@
 # (about 3 minutes on 2 cores). Prints a table: per strategy (its class), the instructions of BASE
 # and of NEW over all frames and BASE's over NEW's. OUT (emptied first) keeps both runs and their
 # callgrind.out files (callgrind_annotate reads them function by function). Needs valgrind (Debian
-# package valgrind).
+# package valgrind). Debian 12's valgrind (3.19) cannot run it on every machine: on a 2-core AMD
+# EPYC with AVX-512 it stopped at libhwy's start-up ("unhandled instruction bytes: 0xF 0x1 0xF9",
+# RDTSCP), before cdbench's main; then only compare-builds.sh's timed rounds are left.
 set -euo pipefail
 usage() {
   echo "usage: scripts/count-instructions.sh BASE NEW OUT -- RUN_ARGS..." >&2
