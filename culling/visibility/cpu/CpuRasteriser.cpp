@@ -444,6 +444,91 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
   return false;
 }
 
+// The pixels [x0, x1] x [y0, y1] of a small triangle's box inside block `index` (at most
+// kSmallBox columns), tested or written at its key bound, a row of the block per SIMD step (lanes
+// outside the columns masked): what testing (writing) them one by one in row order does, with the
+// same pixel counts (a test counts up to its first occluded pixel) and the same block bounds after
+// a write (drawn pixel by pixel, a block's bounds were made exact again wherever a changed pixel
+// held the far bound, or, in an order-independent pass, after every change; here once, at the end,
+// which leaves the same values). A test returns true at an occluded pixel.
+template <bool kIsTest, bool kOthers>
+HWY_INLINE bool smallInBlock(CpuDepthBuffer& buffer, std::size_t index, const RasterPass& pass,
+                             const TriangleRaster& r, int x0, int x1, int y0, int y1,
+                             const Writer& writer, RasterWork& work) {
+  const D d;
+  const int n = static_cast<int>(hn::Lanes(d));
+  const int c0 = inBlock(x0), c1 = inBlock(x1);
+  const auto sign = hn::Set(d, pass.sign);
+  float* values = buffer.block(index);
+  // Key bound of step 1 (a write stores it as a value of the pass' sign).
+  const float value = pass.sign * r.zLo;
+  auto changed = hn::FirstN(d, 0), heldFar = hn::FirstN(d, 0);
+  const float far = pass.sign > 0 ? buffer.blockMax(index) : buffer.blockMin(index);
+  for (int y = y0; y <= y1; ++y)
+    for (int lx = c0 - c0 % n; lx <= c1; lx += n) {
+      const int from = std::max(c0, lx) - lx, to = std::min(c1, lx + n - 1) - lx;
+      const auto columns = hn::AndNot(hn::FirstN(d, static_cast<std::size_t>(from)),
+                                      hn::FirstN(d, static_cast<std::size_t>(to + 1)));
+      const int at = inBlock(y) * kBlock + lx;
+      if constexpr (kIsTest) {
+        const auto stored = hn::Mul(sign, hn::LoadU(d, values + at));
+        const auto key = kOthers ? hn::IfThenElse(ownLanes(buffer.objects(index) + at, writer),
+                                                  hn::LoadU(d, buffer.others(index) + at), stored)
+                                 : stored;
+        const intptr_t first =
+            hn::FindFirstTrue(d, hn::And(columns, hn::Ge(hn::Set(d, r.zHi), key)));
+        if (first >= 0) {
+          work.pixelsTested += static_cast<std::uint64_t>(first - from + 1);
+          return true;
+        }
+        work.pixelsTested += static_cast<std::uint64_t>(to - from + 1);
+      } else if constexpr (kOthers) {
+        work.pixelsWritten += static_cast<std::uint64_t>(to - from + 1);
+        const auto v = hn::Set(d, value);
+        const auto nearest = hn::LoadU(d, values + at);
+        const auto others = hn::LoadU(d, buffer.others(index) + at);
+        const auto own = ownLanes(buffer.objects(index) + at, writer);
+        // Its own object's value lowered; another's taken over (the old nearest becomes the
+        // others'); or the others' nearest lowered.
+        const auto nearer = hn::And(columns, hn::Lt(v, nearest));
+        const auto takeOver = hn::AndNot(own, nearer);
+        const auto lowersOthers =
+            hn::And(hn::AndNot(own, hn::AndNot(nearer, columns)), hn::Lt(v, others));
+        if (hn::AllFalse(d, hn::Or(nearer, lowersOthers))) continue;
+        hn::StoreU(hn::IfThenElse(nearer, v, nearest), d, values + at);
+        hn::StoreU(hn::IfThenElse(takeOver, nearest, hn::IfThenElse(lowersOthers, v, others)), d,
+                   buffer.others(index) + at);
+        auto* ids = reinterpret_cast<std::int32_t*>(buffer.objects(index) + at);
+        hn::StoreU(
+            hn::IfThenElse(hn::RebindMask(DI(), takeOver), writer.lanes, hn::LoadU(DI(), ids)),
+            DI(), ids);
+        changed = hn::Or(changed, hn::Or(nearer, lowersOthers));
+      } else {
+        work.pixelsWritten += static_cast<std::uint64_t>(to - from + 1);
+        const auto stored = hn::LoadU(d, values + at);
+        const auto nearer = hn::And(columns, hn::Lt(hn::Set(d, r.zLo), hn::Mul(sign, stored)));
+        hn::StoreU(hn::IfThenElse(nearer, hn::Set(d, value), stored), d, values + at);
+        changed = hn::Or(changed, nearer);
+        heldFar = hn::Or(heldFar, hn::And(nearer, hn::Eq(stored, hn::Set(d, far))));
+      }
+    }
+  if constexpr (!kIsTest) {
+    if (hn::AllFalse(d, changed)) return false;
+    if constexpr (kOthers) {
+      refreshBounds<true>(buffer, index);
+    } else {
+      // The value only moves toward the near bound; the far bound can only move when a changed
+      // pixel held it.
+      if (pass.sign > 0)
+        buffer.blockMin(index) = std::min(buffer.blockMin(index), value);
+      else
+        buffer.blockMax(index) = std::max(buffer.blockMax(index), value);
+      if (!hn::AllFalse(d, heldFar)) refreshBounds<false>(buffer, index);
+    }
+  }
+  return false;
+}
+
 // A small triangle (smallBox): every pixel of its box inside the window, at the key bound of
 // step 1 (zHi for a test, zLo for a write), block by block (a box of a few pixels mostly lies in
 // one block: its pending writes, bounds and storage are looked at once).
@@ -451,7 +536,6 @@ template <bool kIsTest, bool kOthers>
 bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRaster& r,
                BlockMask mask, const Writer& writer, RasterWork& work,
                PendingBlocks* pending = nullptr) {
-  const float value = pass.sign * r.zLo;
   const BlockRange blocks = blocksInWindow(buffer, r);
   for (int by = blocks.y0; by <= blocks.y1; ++by)
     for (int bx = blocks.x0; bx <= blocks.x1; ++bx) {
@@ -471,49 +555,9 @@ bool drawSmall(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRas
         buffer.materialise(index);
       }
       const BoxInBlock o = boxInBlock(r, bx, by);
-      const int x0 = r.x0 + o.dxA, x1 = r.x0 + o.dxB, y0 = r.y0 + o.dyA, y1 = r.y0 + o.dyB;
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const int at = inBlock(y) * kBlock + inBlock(x);
-          if constexpr (kIsTest) {
-            ++work.pixelsTested;
-            const float key = kOthers && buffer.objects(index)[at] == writer.object
-                                  ? buffer.others(index)[at]
-                                  : pass.sign * buffer.block(index)[at];
-            if (r.zHi >= key) return true;
-          } else if constexpr (kOthers) {
-            ++work.pixelsWritten;
-            float& nearest = buffer.block(index)[at];
-            float& others = buffer.others(index)[at];
-            std::uint32_t& object = buffer.objects(index)[at];
-            if (object == writer.object) {
-              if (!(value < nearest)) continue;
-              nearest = value;
-            } else if (value < nearest) {
-              others = nearest, nearest = value, object = writer.object;
-            } else if (value < others) {
-              others = value;
-            } else {
-              continue;
-            }
-            refreshBounds<true>(buffer, index);
-          } else {
-            ++work.pixelsWritten;
-            float& stored1 = buffer.block(index)[at];
-            if (!(r.zLo < pass.sign * stored1)) continue;
-            const float old = stored1;
-            stored1 = value;
-            // The value only moves toward the near bound; the far bound can only move when the
-            // pixel held it.
-            if (pass.sign > 0) {
-              buffer.blockMin(index) = std::min(buffer.blockMin(index), value);
-              if (old == buffer.blockMax(index)) refreshBounds<false>(buffer, index);
-            } else {
-              buffer.blockMax(index) = std::max(buffer.blockMax(index), value);
-              if (old == buffer.blockMin(index)) refreshBounds<false>(buffer, index);
-            }
-          }
-        }
+      if (smallInBlock<kIsTest, kOthers>(buffer, index, pass, r, r.x0 + o.dxA, r.x0 + o.dxB,
+                                         r.y0 + o.dyA, r.y0 + o.dyB, writer, work))
+        return true;
     }
   return false;
 }
