@@ -313,6 +313,32 @@ HWY_INLINE hn::Mask<D> ownLanes(const std::uint32_t* objects, const Writer& w) {
   return hn::RebindMask(D(), hn::Eq(ids, w.lanes));
 }
 
+// An order-independent write of `key` into the lanes `m` of the step at `at` of block `index`: per
+// pixel, a key of the object that wrote the nearest value lowers it; a nearer key of another
+// object takes it over (the old nearest becomes the nearest of the others); a farther one lowers
+// the others' nearest. True when a stored value changed.
+HWY_INLINE bool writeOthersStep(CpuDepthBuffer& buffer, std::size_t index, int at, hn::Mask<D> m,
+                                hn::Vec<D> key, const Writer& writer) {
+  const D d;
+  float* values = buffer.block(index) + at;
+  float* othersAt = buffer.others(index) + at;
+  const auto nearest = hn::LoadU(d, values);
+  const auto others = hn::LoadU(d, othersAt);
+  const auto own = ownLanes(buffer.objects(index) + at, writer);
+  // Nearer than the nearest: the key is the nearest now, of this object.
+  const auto nearer = hn::And(m, hn::Lt(key, nearest));
+  const auto takeOver = hn::AndNot(own, nearer);
+  const auto lowersOthers = hn::And(hn::AndNot(own, hn::AndNot(nearer, m)), hn::Lt(key, others));
+  if (hn::AllFalse(d, hn::Or(nearer, lowersOthers))) return false;
+  hn::StoreU(hn::IfThenElse(nearer, key, nearest), d, values);
+  hn::StoreU(hn::IfThenElse(takeOver, nearest, hn::IfThenElse(lowersOthers, key, others)), d,
+             othersAt);
+  auto* ids = reinterpret_cast<std::int32_t*>(buffer.objects(index) + at);
+  hn::StoreU(hn::IfThenElse(hn::RebindMask(DI(), takeOver), writer.lanes, hn::LoadU(DI(), ids)),
+             DI(), ids);
+  return true;
+}
+
 // A test of the span in one block: true at the first covered sample at or behind the stored key
 // (kOthers: the nearest any other object wrote).
 template <bool kOthers>
@@ -359,41 +385,25 @@ HWY_INLINE bool writeBlock(CpuDepthBuffer& buffer, std::size_t index, const Lane
   // (Lanes nearer than stored, over every step: a branch per step on whether any is mispredicts
   // as often as a step's pixels are nearer or not.)
   auto anyNearer = hn::FirstN(d, 0);
-  forEachStep(
-      l, r, span, bx, work.pixelsWritten,
-      [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
-        const auto m = kWhole ? inBox(dx, span) : covered(l, row, dx, span);
-        const int at = inBlock(y) * kBlock + lx;
-        const auto key = keyAt(l, row, dx);
-        if constexpr (kOthers) {
-          const auto nearest = hn::LoadU(d, values + at);
-          const auto others = hn::LoadU(d, buffer.others(index) + at);
-          const auto own = ownLanes(buffer.objects(index) + at, writer);
-          // Nearer than the nearest: the key is the nearest now, of this object.
-          const auto nearer = hn::And(m, hn::Lt(key, nearest));
-          const auto takeOver = hn::AndNot(own, nearer);
-          const auto lowersOthers =
-              hn::And(hn::AndNot(own, hn::AndNot(nearer, m)), hn::Lt(key, others));
-          if (hn::AllFalse(d, hn::Or(nearer, lowersOthers))) return false;
-          hn::StoreU(hn::IfThenElse(nearer, key, nearest), d, values + at);
-          hn::StoreU(hn::IfThenElse(takeOver, nearest, hn::IfThenElse(lowersOthers, key, others)),
-                     d, buffer.others(index) + at);
-          auto* ids = reinterpret_cast<std::int32_t*>(buffer.objects(index) + at);
-          hn::StoreU(
-              hn::IfThenElse(hn::RebindMask(DI(), takeOver), writer.lanes, hn::LoadU(DI(), ids)),
-              DI(), ids);
-        } else {
-          const auto storedKey = hn::Mul(hn::LoadU(d, values + at), sign);
-          const auto nearer = hn::And(m, hn::Lt(key, storedKey));
-          // Stored back whatever it holds: the lanes not nearer keep their value (times the sign
-          // twice, exact).
-          hn::StoreU(hn::Mul(hn::IfThenElse(nearer, key, storedKey), sign), d, values + at);
-          anyNearer = hn::Or(anyNearer, nearer);
-          return false;
-        }
-        changed = true;
-        return false;
-      });
+  forEachStep(l, r, span, bx, work.pixelsWritten,
+              [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
+                const auto m = kWhole ? inBox(dx, span) : covered(l, row, dx, span);
+                const int at = inBlock(y) * kBlock + lx;
+                const auto key = keyAt(l, row, dx);
+                if constexpr (kOthers) {
+                  if (!writeOthersStep(buffer, index, at, m, key, writer)) return false;
+                } else {
+                  const auto storedKey = hn::Mul(hn::LoadU(d, values + at), sign);
+                  const auto nearer = hn::And(m, hn::Lt(key, storedKey));
+                  // Stored back whatever it holds: the lanes not nearer keep their value (times the
+                  // sign twice, exact).
+                  hn::StoreU(hn::Mul(hn::IfThenElse(nearer, key, storedKey), sign), d, values + at);
+                  anyNearer = hn::Or(anyNearer, nearer);
+                  return false;
+                }
+                changed = true;
+                return false;
+              });
   return changed || !hn::AllFalse(d, anyNearer);
 }
 
@@ -463,6 +473,7 @@ HWY_INLINE bool smallInBlock(CpuDepthBuffer& buffer, std::size_t index, const Ra
   // Key bound of step 1 (a write stores it as a value of the pass' sign).
   const float value = pass.sign * r.zLo;
   auto changed = hn::FirstN(d, 0), heldFar = hn::FirstN(d, 0);
+  bool othersChanged = false;
   const float far = pass.sign > 0 ? buffer.blockMax(index) : buffer.blockMin(index);
   for (int y = y0; y <= y1; ++y)
     for (int lx = c0 - c0 % n; lx <= c1; lx += n) {
@@ -484,25 +495,8 @@ HWY_INLINE bool smallInBlock(CpuDepthBuffer& buffer, std::size_t index, const Ra
         work.pixelsTested += static_cast<std::uint64_t>(to - from + 1);
       } else if constexpr (kOthers) {
         work.pixelsWritten += static_cast<std::uint64_t>(to - from + 1);
-        const auto v = hn::Set(d, value);
-        const auto nearest = hn::LoadU(d, values + at);
-        const auto others = hn::LoadU(d, buffer.others(index) + at);
-        const auto own = ownLanes(buffer.objects(index) + at, writer);
-        // Its own object's value lowered; another's taken over (the old nearest becomes the
-        // others'); or the others' nearest lowered.
-        const auto nearer = hn::And(columns, hn::Lt(v, nearest));
-        const auto takeOver = hn::AndNot(own, nearer);
-        const auto lowersOthers =
-            hn::And(hn::AndNot(own, hn::AndNot(nearer, columns)), hn::Lt(v, others));
-        if (hn::AllFalse(d, hn::Or(nearer, lowersOthers))) continue;
-        hn::StoreU(hn::IfThenElse(nearer, v, nearest), d, values + at);
-        hn::StoreU(hn::IfThenElse(takeOver, nearest, hn::IfThenElse(lowersOthers, v, others)), d,
-                   buffer.others(index) + at);
-        auto* ids = reinterpret_cast<std::int32_t*>(buffer.objects(index) + at);
-        hn::StoreU(
-            hn::IfThenElse(hn::RebindMask(DI(), takeOver), writer.lanes, hn::LoadU(DI(), ids)),
-            DI(), ids);
-        changed = hn::Or(changed, hn::Or(nearer, lowersOthers));
+        othersChanged =
+            writeOthersStep(buffer, index, at, columns, hn::Set(d, value), writer) || othersChanged;
       } else {
         work.pixelsWritten += static_cast<std::uint64_t>(to - from + 1);
         const auto stored = hn::LoadU(d, values + at);
@@ -512,19 +506,17 @@ HWY_INLINE bool smallInBlock(CpuDepthBuffer& buffer, std::size_t index, const Ra
         heldFar = hn::Or(heldFar, hn::And(nearer, hn::Eq(stored, hn::Set(d, far))));
       }
     }
-  if constexpr (!kIsTest) {
+  if constexpr (kOthers && !kIsTest) {
+    if (othersChanged) refreshBounds<true>(buffer, index);
+  } else if constexpr (!kIsTest) {
     if (hn::AllFalse(d, changed)) return false;
-    if constexpr (kOthers) {
-      refreshBounds<true>(buffer, index);
-    } else {
-      // The value only moves toward the near bound; the far bound can only move when a changed
-      // pixel held it.
-      if (pass.sign > 0)
-        buffer.blockMin(index) = std::min(buffer.blockMin(index), value);
-      else
-        buffer.blockMax(index) = std::max(buffer.blockMax(index), value);
-      if (!hn::AllFalse(d, heldFar)) refreshBounds<false>(buffer, index);
-    }
+    // The value only moves toward the near bound; the far bound can only move when a changed
+    // pixel held it.
+    if (pass.sign > 0)
+      buffer.blockMin(index) = std::min(buffer.blockMin(index), value);
+    else
+      buffer.blockMax(index) = std::max(buffer.blockMax(index), value);
+    if (!hn::AllFalse(d, heldFar)) refreshBounds<false>(buffer, index);
   }
   return false;
 }
