@@ -458,9 +458,9 @@ bool drawBlocks(CpuDepthBuffer& buffer, const RasterPass& pass, const TriangleRa
 // kSmallBox columns), tested or written at its key bound, a row of the block per SIMD step (lanes
 // outside the columns masked): what testing (writing) them one by one in row order does, with the
 // same pixel counts (a test counts up to its first occluded pixel) and the same block bounds after
-// a write (drawn pixel by pixel, a block's bounds were made exact again wherever a changed pixel
-// held the far bound, or, in an order-independent pass, after every change; here once, at the end,
-// which leaves the same values). A test returns true at an occluded pixel.
+// a write (made exact once at the end when a changed pixel held the far bound, or in an
+// order-independent pass when any changed: the values that remaking them after each such pixel
+// leaves). A test returns true at an occluded pixel.
 template <bool kIsTest, bool kOthers>
 HWY_INLINE bool smallInBlock(CpuDepthBuffer& buffer, std::size_t index, const RasterPass& pass,
                              const TriangleRaster& r, int x0, int x1, int y0, int y1,
@@ -486,7 +486,7 @@ HWY_INLINE bool smallInBlock(CpuDepthBuffer& buffer, std::size_t index, const Ra
         const auto key = kOthers ? hn::IfThenElse(ownLanes(buffer.objects(index) + at, writer),
                                                   hn::LoadU(d, buffer.others(index) + at), stored)
                                  : stored;
-        const intptr_t first =
+        const std::intptr_t first =
             hn::FindFirstTrue(d, hn::And(columns, hn::Ge(hn::Set(d, r.zHi), key)));
         if (first >= 0) {
           work.pixelsTested += static_cast<std::uint64_t>(first - from + 1);
