@@ -313,6 +313,21 @@ HWY_INLINE hn::Mask<D> ownLanes(const std::uint32_t* objects, const Writer& w) {
   return hn::RebindMask(D(), hn::Eq(ids, w.lanes));
 }
 
+// The keys a test reads in the step at `at` of a non-uniform block `index`: the stored values in
+// the pass' key order, or (kOthers, sign +1) at a pixel its own object wrote nearest, the nearest
+// of the others.
+template <bool kOthers>
+HWY_INLINE hn::Vec<D> readKeys(const CpuDepthBuffer& buffer, std::size_t index, int at,
+                               hn::Vec<D> sign, const Writer& writer) {
+  const D d;
+  const auto values = hn::LoadU(d, buffer.block(index) + at);
+  if constexpr (kOthers)
+    return hn::IfThenElse(ownLanes(buffer.objects(index) + at, writer),
+                          hn::LoadU(d, buffer.others(index) + at), values);
+  else
+    return hn::Mul(values, sign);
+}
+
 // An order-independent write of `key` into the lanes `m` of the step at `at` of block `index`: per
 // pixel, a key of the object that wrote the nearest value lowers it; a nearer key of another
 // object takes it over (the old nearest becomes the nearest of the others); a farther one lowers
@@ -350,23 +365,15 @@ HWY_INLINE bool testBlock(const CpuDepthBuffer& buffer, std::size_t index, const
   // pixel is occluded without reading depths.
   const bool allBehind = r.zLo >= stored.farthest;
   const bool uniform = buffer.uniform(index);
-  const float* values = buffer.block(index);
   return forEachStep(l, r, span, bx, work.pixelsTested,
                      [&](int y, int lx, hn::Vec<D> dx, const RowSetup& row) HWY_ATTR {
                        const auto m = covered(l, row, dx, span);
                        if (allBehind) return !hn::AllFalse(d, m);
                        const auto key = keyAt(l, row, dx);
                        const int at = inBlock(y) * kBlock + lx;
-                       hn::Vec<D> storedKey;
-                       if (uniform) {
-                         storedKey = hn::Set(d, stored.nearest);
-                       } else if constexpr (kOthers) {  // keys are stored values (sign +1)
-                         storedKey = hn::IfThenElse(ownLanes(buffer.objects(index) + at, writer),
-                                                    hn::LoadU(d, buffer.others(index) + at),
-                                                    hn::LoadU(d, values + at));
-                       } else {
-                         storedKey = hn::Mul(hn::LoadU(d, values + at), sign);
-                       }
+                       const auto storedKey =
+                           uniform ? hn::Set(d, stored.nearest)
+                                   : readKeys<kOthers>(buffer, index, at, sign, writer);
                        return !hn::AllFalse(d, hn::And(m, hn::Ge(key, storedKey)));
                      });
 }
@@ -482,10 +489,7 @@ HWY_INLINE bool smallInBlock(CpuDepthBuffer& buffer, std::size_t index, const Ra
                                       hn::FirstN(d, static_cast<std::size_t>(to + 1)));
       const int at = inBlock(y) * kBlock + lx;
       if constexpr (kIsTest) {
-        const auto stored = hn::Mul(sign, hn::LoadU(d, values + at));
-        const auto key = kOthers ? hn::IfThenElse(ownLanes(buffer.objects(index) + at, writer),
-                                                  hn::LoadU(d, buffer.others(index) + at), stored)
-                                 : stored;
+        const auto key = readKeys<kOthers>(buffer, index, at, sign, writer);
         const std::intptr_t first =
             hn::FindFirstTrue(d, hn::And(columns, hn::Ge(hn::Set(d, r.zHi), key)));
         if (first >= 0) {
