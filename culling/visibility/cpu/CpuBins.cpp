@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 
 #include "core/ArenaForEach.h"
 #include "culling/visibility/cpu/CpuAnswers.h"
@@ -99,17 +100,20 @@ void boundItem(const ScreenExtent& e, bool finite, const RasterPass& pass, CpuIt
   item.kHi = clampToPass(raster_detail::roundUp(e.hi[2] + shift + slack));
 }
 
-// A mesh part's (or a listed part's) screen bounds from its box.
-CpuPartScreenBounds partBoundsOf(const ScreenMatrix& toScreen, const Eigen::AlignedBox3f& box,
-                                 const RasterPass& pass) {
-  CpuPartScreenBounds b;
-  if (box.isEmpty()) return b;
+// A mesh part's (or a listed part's) screen bounds from its box, written into `b` field by field.
+// (Returned by value, they were put together on the stack with 8- and 2-byte stores and copied
+// out 16 bytes at a time: each such load waits for the stores it spans.)
+void partBoundsOf(const ScreenMatrix& toScreen, const Eigen::AlignedBox3f& box,
+                  const RasterPass& pass, CpuPartScreenBounds& b) {
+  if (box.isEmpty()) {
+    b.rect = {}, b.present = false, b.finite = false;
+    return;
+  }
   const ScreenExtent e = extentOf(toScreen, box);
   for (int i = 0; i < 3; ++i) b.lo[i] = e.lo[i], b.hi[i] = e.hi[i];
   b.present = true;
   b.finite = e.finite();
   b.rect = pixelsOf(e, b.finite, pass);
-  return b;
 }
 
 // A chunk item's bounds from its parts' (null or not present: parts it does not have): each
@@ -133,7 +137,7 @@ void boundChunk(std::span<const CpuPartScreenBounds* const> parts, const RasterP
     any = true;
   }
   if (!any) {
-    item.rect = {};
+    item.rect = {}, item.kLo = item.kHi = 0.f;
     return;
   }
   boundItem(all, finite, pass, item);
@@ -198,7 +202,10 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       }
       item.first = c.first + b, item.answer = answerOf(b);
       ScreenMatrix& cube = bins.boxCubes[item.first];
-      if (!c.sharesBoxes()) cube = cubeToScreen(c.toScreen, recording.boxes[item.first]);
+      // (Made in place: assigned, it was made on the stack and copied 16 bytes at a time across
+      // the function's 8- and 16-byte stores, each such load waiting for them.)
+      if (!c.sharesBoxes())
+        ::new (&cube) ScreenMatrix(cubeToScreen(c.toScreen, recording.boxes[item.first]));
       const ScreenExtent e = extentOf(cube, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
       boundItem(e, e.finite(), raster, item, ownerItems ? &ownerItems[b].rect : nullptr);
     }
@@ -215,7 +222,7 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
         vertices.parts(c, q / kParts, mesh.parts.size(),
                        [&](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
                          for (std::size_t k = 0; k < count; ++k)
-                           out[k] = partBoundsOf(c.toScreen, mesh.parts[first + k], raster);
+                           partBoundsOf(c.toScreen, mesh.parts[first + k], raster, out[k]);
                        },
                        own[p]);
     return chunkParts + q % kParts;
@@ -223,7 +230,8 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
   std::array<const CpuPartScreenBounds*, kParts> parts;
   std::array<CpuPartScreenBounds, kParts> listedParts;
   for (std::uint32_t n = n0, at = n0 * kChunkTriangles; n < n1; ++n, at += kChunkTriangles) {
-    CpuItem& item = items[n] = base;
+    CpuItem& item = items[n];
+    item = n == n0 ? base : items[n0];  // (as the boxes' items, above)
     item.first = c.first + at;
     const std::uint32_t count = std::min(kChunkTriangles, c.count - at);
     item.count = count;
@@ -250,7 +258,7 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
       }
       Eigen::AlignedBox3f box;
       for (std::uint32_t i = p0; i < p1; ++i) box.extend(mesh.triangles[listed[i]]);
-      listedParts[p] = partBoundsOf(c.toScreen, box, raster);
+      partBoundsOf(c.toScreen, box, raster, listedParts[p]);
       parts[p] = &listedParts[p];
     }
     boundChunk(parts, raster, item, bins.parts[item.parts]);
