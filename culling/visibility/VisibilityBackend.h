@@ -91,7 +91,8 @@ struct VisibilityCounters {
   std::uint64_t pixelsWritten = 0;
   // Backends that evaluate a pass tile by tile (cpu): visits of a piece of a draw (a chunk of
   // triangles, a box) to a screen tile it may reach. Tests: all of them, those decided without
-  // pixels by bounds, those skipped because another tile already found the piece occluded.
+  // rasterising a pixel (by the stored bounds of their blocks, or a box by the depth stored under
+  // its centre), those skipped because another tile already found the piece occluded.
   // Writes: all of them, and those rasterised (a later test read them).
   std::uint64_t tileTests = 0;
   std::uint64_t tileTestsByBounds = 0;

@@ -102,7 +102,8 @@ inline constexpr std::array kFrameColumns = {
                 "tests of a piece (a chunk of triangles, a box) in a screen tile it may reach "
                 "(backends evaluating tiles: cpu; 0 elsewhere)"},
     FrameColumn{"tile_tests_by_bounds", &FrameRecord::tileTestsByBounds,
-                "of tile_tests, decided by bounds without a pixel"},
+                "of tile_tests, decided without rasterising a pixel: by the stored bounds of "
+                "their blocks, or a box by the depth stored under its centre"},
     FrameColumn{"tile_tests_skipped", &FrameRecord::tileTestsSkipped,
                 "of tile_tests, skipped: the piece's answers closed already (found occluded in "
                 "another tile, or its gate's), passed over in the walk or left out at binning"},

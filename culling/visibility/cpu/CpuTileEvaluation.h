@@ -229,7 +229,7 @@ struct CpuTileState {
 struct CpuTileWork {
   RasterWork raster;
   std::uint64_t tests = 0;          // (test item, tile) visits
-  std::uint64_t testsByBounds = 0;  // of them decided without pixels
+  std::uint64_t testsByBounds = 0;  // of them decided without rasterising a pixel
   std::uint64_t testsSkipped = 0;   // of them skipped: answered elsewhere
   std::uint64_t writes = 0;         // (write item, tile) visits
   std::uint64_t writesRasterised = 0;
