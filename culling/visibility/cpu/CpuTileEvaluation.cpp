@@ -60,6 +60,8 @@ bool occludedAtCentre(const CpuDepthBuffer& depth, const ScreenMatrix& cube,
   const int px = static_cast<int>(x), py = static_cast<int>(y);
   const std::size_t index =
       depth.blockIndex(CpuDepthBuffer::blockOf(px), CpuDepthBuffer::blockOf(py));
+  // (Nothing stored in the block at or in front of kLo: its pixels are not read.)
+  if (kLo < depth.blockKeys(index, raster.sign).nearest) return false;
   const float stored =
       depth.uniform(index)
           ? depth.blockMin(index)
