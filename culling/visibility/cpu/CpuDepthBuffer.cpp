@@ -40,10 +40,4 @@ void CpuDepthBuffer::materialise(std::size_t index) {
   uniform_[index] = 0;
 }
 
-float CpuDepthBuffer::at(int x, int y) const {
-  const std::size_t index = blockIndex(blockOf(x), blockOf(y));
-  if (uniform_[index]) return min_[index];
-  return block(index)[inBlock(y) * kBlock + inBlock(x)];
-}
-
 }  // namespace cdb

@@ -90,8 +90,12 @@ class CpuDepthBuffer {
     return second_.data() + index * kBlockPixels;
   }
 
-  // Stored depth of pixel (x, y) of the frame, inside the window (tests and debugging; slow).
-  [[nodiscard]] float at(int x, int y) const;
+  // Stored depth of pixel (x, y) of the frame, inside the window (one pixel: the loops read
+  // blocks by rows).
+  [[nodiscard]] float at(int x, int y) const {
+    const std::size_t index = blockIndex(blockOf(x), blockOf(y));
+    return uniform_[index] ? min_[index] : block(index)[inBlock(y) * kBlock + inBlock(x)];
+  }
 
  private:
   int bx0_ = 0, by0_ = 0, nx_ = 0, ny_ = 0;

@@ -62,12 +62,7 @@ bool occludedAtCentre(const CpuDepthBuffer& depth, const ScreenMatrix& cube,
       depth.blockIndex(CpuDepthBuffer::blockOf(px), CpuDepthBuffer::blockOf(py));
   // (Nothing stored in the block at or in front of kLo: its pixels are not read.)
   if (kLo < depth.blockKeys(index, raster.sign).nearest) return false;
-  const float stored =
-      depth.uniform(index)
-          ? depth.blockMin(index)
-          : depth.block(index)[CpuDepthBuffer::inBlock(py) * CpuDepthBuffer::kBlock +
-                               CpuDepthBuffer::inBlock(px)];
-  return kLo >= stored * raster.sign;
+  return kLo >= depth.at(px, py) * raster.sign;
 }
 
 // What an item's command says of it: its pass' rasterisation, its object.
