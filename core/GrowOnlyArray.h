@@ -7,7 +7,7 @@
 //
 // Why: on a virtual machine a page fault can cost far more than the work that touches the page
 // (measured on the project's 2-core VM: 10.7 us per 4 KiB page touched first, against 0.3 us per
-// 4 KiB of a reused 2 MiB page; docs/visibility-backends.md). A std::vector that doubles copies
+// 4 KiB of a reused 2 MiB page; docs/cpu-backend-history.md). A std::vector that doubles copies
 // into fresh pages and frees the old ones, so the frames where a scene grows paid for its tables'
 // pages two or three times over.
 //

@@ -40,7 +40,7 @@ struct CpuEvaluation {
   bool earlyOut = true;      // a test found occluded in one tile is skipped in the others
   // Groups of pending writes listed in one block, and writes pending in one tile, before those are
   // drawn (a test scans the groups listed in its blocks, and a pending write keeps its prepared
-  // pieces; measured in docs/visibility-backends.md: a tile of env2's dragon pile gets tens of
+  // pieces; measured in docs/cpu-backend-history.md: a tile of env2's dragon pile gets tens of
   // thousands of cullide_bvh's node boxes, and at 4,096 half of its writes' drawing was for the
   // limit).
   std::size_t mostPendingInBlock = 1024;
