@@ -113,6 +113,16 @@ std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
     b.chunkVertexStart.push_back(static_cast<std::uint32_t>(b.chunkVertices.size()));
     b.chunkPositions.reserve(b.chunkVertices.size());
     for (const std::uint32_t v : b.chunkVertices) b.chunkPositions.push_back(m.vertices[v]);
+    const std::size_t chunks = (n + kChunkTriangles - 1) / kChunkTriangles;
+    b.chunkCorners.resize(chunks * kChunkCornerRows * kChunkTriangles);
+    for (std::size_t p = 0; p < chunks * kChunkTriangles; ++p) {
+      const Triangle& t = m.triangles[b.order[std::min(p, n - 1)]];
+      float* rows =
+          b.chunkCorners.data() + p / kChunkTriangles * kChunkCornerRows * kChunkTriangles;
+      for (int v = 0; v < 3; ++v)
+        for (int a = 0; a < 3; ++a)
+          rows[(3 * v + a) * kChunkTriangles + p % kChunkTriangles] = m.vertices[t[v]][a];
+    }
     for (std::size_t first = 0; first < n; first += kPartTriangles) {
       Eigen::AlignedBox3f part;
       const std::size_t end = std::min<std::size_t>(first + kPartTriangles, n);

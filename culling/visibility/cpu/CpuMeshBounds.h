@@ -41,7 +41,13 @@ struct CpuMeshBounds {
   // are then read in a row when transformed, not gathered from all over the mesh).
   std::vector<Eigen::Vector3f> chunkPositions;
   std::vector<std::array<std::uint8_t, 3>> cornersInChunk;
+  // The corners again, triangle by triangle, in rows a SIMD step reads without following an index
+  // (CpuChunkLanes): chunk c's rows start at c * kChunkCornerRows * kChunkTriangles, and row
+  // 3 v + a holds coordinate a of corner v of its kChunkTriangles positions (those past the mesh's
+  // last triangle repeat it).
+  std::vector<float> chunkCorners;
 };
+inline constexpr std::uint32_t kChunkCornerRows = 9;
 
 [[nodiscard]] std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene);
 

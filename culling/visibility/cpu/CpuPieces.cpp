@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "culling/visibility/cpu/CpuChunkLanes.h"
 #include "culling/visibility/cpu/CpuPassSpace.h"
 
 namespace cdb {
@@ -61,11 +62,32 @@ unsigned decidingFaces(const ScreenMatrix& cube, CpuCommand::Role role) {
 }  // namespace
 
 void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuCommand& c,
-                 const CpuItem& item, const PixelRect& window, double marginPx, CpuPieces& out) {
+                 const CpuItem& item, const PixelRect& window, double marginPx, bool everyCorner,
+                 CpuPieces& out) {
   out.areQuads = false;
   out.hasExtents = true;
   out.count = 0;
   const bool listed = c.source == CpuCommand::Source::Listed;
+  // A pixel box lies within [minX - margin - 1, maxX + margin] (and the same in y), in either
+  // rasterisation mode (setupBounds: from ceil(minX - margin) - 1 to floor(maxX + margin); raw
+  // mode's centre rule lies within), so it meets the window only if maxX >= x0 - margin and
+  // minX <= x1 + margin + 1; half a pixel more is left for rounding.
+  const double below = marginPx + 0.5, above = marginPx + 1.5;
+  const double wx0 = window.x0 - below, wx1 = window.x1 + above;
+  const double wy0 = window.y0 - below, wy1 = window.y1 + above;
+  const CpuItemParts& partRects = run.bins.parts[item.parts];
+  const std::uint32_t count = item.count;
+  if (!listed && item.first % kChunkTriangles == 0) {  // a whole mesh chunk's rows, in lanes
+    unsigned parts = 0;
+    for (std::uint32_t part = 0; part < count; part += kPartTriangles)
+      if (partRects[part / kPartTriangles].overlaps(window)) parts |= 1u << (part / kPartTriangles);
+    const ChunkGather how{
+        {wx0, wx1, wy0, wy1}, c.winding, c.role == CpuCommand::Role::Test, marginPx, everyCorner};
+    gatherChunkInLanes(bounds.chunkCorners.data() + std::size_t{item.first} / kChunkTriangles *
+                                                        kChunkCornerRows * kChunkTriangles,
+                       count, parts, c.toScreen, how, out);
+    return;
+  }
   const auto triangleAt = [&](std::uint32_t i) {
     return listed ? run.recording.listed[item.first + i] : item.first + i;
   };
@@ -75,16 +97,7 @@ void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuComman
   const CpuScreenVertex* vertices = nullptr;
   bool finite = true;  // every coordinate of the chunk's vertices
   TriangleExtents& e = out.extents;
-  // A pixel box lies within [minX - margin - 1, maxX + margin] (and the same in y), in either
-  // rasterisation mode (setupBounds: from ceil(minX - margin) - 1 to floor(maxX + margin); raw
-  // mode's centre rule lies within), so it meets the window only if maxX >= x0 - margin and
-  // minX <= x1 + margin + 1; half a pixel more is left for rounding.
-  const double below = marginPx + 0.5, above = marginPx + 1.5;
-  const double wx0 = window.x0 - below, wx1 = window.x1 + above;
-  const double wy0 = window.y0 - below, wy1 = window.y1 + above;
-  const CpuItemParts& partRects = run.bins.parts[item.parts];
   std::size_t kept = 0;
-  const std::uint32_t count = item.count;
   for (std::uint32_t part = 0; part < count; part += kPartTriangles) {
     if (!partRects[part / kPartTriangles].overlaps(window)) continue;
     const std::uint32_t end = std::min(count, part + kPartTriangles);

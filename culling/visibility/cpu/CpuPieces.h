@@ -32,9 +32,12 @@ struct CpuPieces {
 // for a Listed command) that its command draws inside `window` (pixels of the frame, in a pass
 // whose coverage margin is `marginPx`): of a closed mesh drawn whole only the faces that decide it
 // (CpuCommand::winding), and none whose pixel box misses the window (nor any of a part whose
-// rectangle misses it: its CpuItemParts); with their extents (out.extents).
+// rectangle misses it: its CpuItemParts); with their extents (out.extents). With `everyCorner`
+// false (a conservative pass whose pieces are set up from their extents), a triangle whose pixel
+// box is small (smallBox) may be left without its corners: its set-up never reads them.
 void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuCommand& c,
-                 const CpuItem& item, const PixelRect& window, double marginPx, CpuPieces& out);
+                 const CpuItem& item, const PixelRect& window, double marginPx, bool everyCorner,
+                 CpuPieces& out);
 
 // A box's matrix from the unit cube [-1, 1]^3 to the screen.
 [[nodiscard]] ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box);

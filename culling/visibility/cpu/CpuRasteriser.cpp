@@ -16,6 +16,8 @@
 #include <string>
 #include <type_traits>
 
+#include "culling/visibility/cpu/CpuLaneOps-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace cdb {
 namespace HWY_NAMESPACE {
@@ -122,16 +124,6 @@ inline BlockRange blocksInMask(const CpuDepthBuffer& buffer, const TriangleRaste
   range.y0 = std::max(range.y0, buffer.blockY0() + rowLo);
   range.y1 = std::min(range.y1, buffer.blockY0() + rowHi);
   return range;
-}
-
-// std::min(a, b) and std::max(a, b) lane by lane: a unless b is below (above) it.
-template <class V>
-HWY_INLINE V lesserOf(V a, V b) {
-  return hn::IfThenElse(hn::Lt(b, a), b, a);
-}
-template <class V>
-HWY_INLINE V greaterOf(V a, V b) {
-  return hn::IfThenElse(hn::Lt(a, b), b, a);
 }
 
 // How the triangle covers the pixels of its box inside block (bx, by), from the range of each

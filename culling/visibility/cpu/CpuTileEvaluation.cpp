@@ -77,23 +77,27 @@ QueryIndex gateBackOf(const CpuRun& run, const CpuItem& item) {
   return run.recording.commands[item.command].gateBack;
 }
 
-// The pieces of an item that reach the buffer's window, in its pass' screen space.
+// The pieces of an item that reach the buffer's window, in its pass' screen space. Set up from
+// their extents (the demand-driven evaluation's tests and prepared writes) a conservative pass'
+// small triangles need no corners; drawn whole (`everyCorner`: the plain evaluation) or in raw
+// mode every triangle does.
 void piecesOf(const CpuScene& scene, const CpuRun& run, const CpuItem& item,
-              const CpuDepthBuffer& depth, CpuPieces& pieces) {
+              const CpuDepthBuffer& depth, CpuPieces& pieces, bool everyCorner = false) {
   const CpuRecording& recording = run.recording;
   const CpuCommand& c = recording.commands[item.command];
   const RasterPass& raster = rasterOf(run, item);
   if (c.source == CpuCommand::Source::Boxes)
     boxPieces(run.bins.boxCubes[item.first], c.role, raster.conservative, pieces);
   else
-    chunkPieces(run, scene.bounds[c.mesh], c, item, tileRect(depth), raster.marginPx, pieces);
+    chunkPieces(run, scene.bounds[c.mesh], c, item, tileRect(depth), raster.marginPx,
+                everyCorner || !raster.conservative, pieces);
 }
 
 // A write drawn whole where it is (the plain evaluation).
 void writeItem(CpuDepthBuffer& depth, const CpuScene& scene, const CpuRun& run, const CpuItem& item,
                CpuTileWork& work) {
   CpuPieces pieces;
-  piecesOf(scene, run, item, depth, pieces);
+  piecesOf(scene, run, item, depth, pieces, true);
   const RasterPass& raster = rasterOf(run, item);
   const std::uint32_t object = objectOf(run, item);
   if (pieces.areQuads)

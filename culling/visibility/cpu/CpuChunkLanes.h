@@ -1,0 +1,37 @@
+#pragma once
+// A Range item's triangles gathered a SIMD step at a time (chunkPieces' path for a whole mesh
+// chunk): each triangle's corners read from its mesh's corner rows (CpuMeshBounds::chunkCorners)
+// without following an index, transformed into the pass' screen space in lanes, bounded, and kept
+// where chunkPieces keeps a triangle. Every value is the one-by-one gather's bit for bit: the same
+// transform of the same floats as CpuScreenVertices, the same comparisons and rounding.
+#include <cstdint>
+
+#include "culling/visibility/cpu/CpuPassSpace.h"
+#include "culling/visibility/cpu/CpuPieces.h"
+
+namespace cdb {
+
+// The window a triangle's extent is kept by (chunkPieces': the tile grown by the margin and half
+// a pixel of rounding): kept unless maxX < x0, minX > x1, maxY < y0 or minY > y1.
+struct ChunkWindow {
+  double x0, x1, y0, y1;
+};
+
+// What a chunk's gather keeps and how.
+struct ChunkGather {
+  ChunkWindow window;
+  std::int8_t winding = 0;  // CpuCommand::winding: nonzero keeps only the faces of `test`'s role
+  bool test = true;
+  double marginPx = 0.0;  // the pass' (RasterPass::marginPx)
+  // Corners for every kept triangle; otherwise only for those whose pixel box is not small
+  // (smallBox, conservative passes: the others are drawn from their box and key bound alone).
+  bool everyCorner = true;
+};
+
+// The first `count` triangles of the chunk whose corner rows start at `rows`, in the parts
+// whose bit is set in `parts` (part p: triangles [p, p + 1) * kPartTriangles), under `toScreen`:
+// those kept, with their extents and offsets, into out (count, triangles, extents, offset).
+void gatherChunkInLanes(const float* rows, std::uint32_t count, unsigned parts,
+                        const ScreenMatrix& toScreen, const ChunkGather& how, CpuPieces& out);
+
+}  // namespace cdb
