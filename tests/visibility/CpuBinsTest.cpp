@@ -70,10 +70,10 @@ struct Binned {
 // Bins chain 0 plainly and chain 1 against `answers` (null: all listed).
 Binned binAgainst(std::uint8_t* answers) {
   CpuRecording r = twoGatedPasses();
-  CpuScreenVertices vertices;
-  vertices.assign(r, {});
+  CpuVertexSets vertexSets;
+  vertexSets.assign(r, {});
   CpuBins bins;
-  binRecording(r, {}, vertices, kTileSize, 0, nullptr, bins);
+  binRecording(r, {}, vertexSets, kTileSize, 0, nullptr, bins);
   EXPECT_EQ(bins.chainCount, 2u);
   EXPECT_EQ(binChains(r, bins, 0, 1, nullptr, nullptr), 0u);
   Binned out;

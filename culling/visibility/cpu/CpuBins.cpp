@@ -154,7 +154,7 @@ bool boundsAlike(const RasterPass& a, const RasterPass& b) {
 // bins.parts[firstParts + n0 ..]. A part that is a whole part of the mesh takes its vertex set's
 // bounds of that part (made once for every command of the set).
 void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
-               const CpuScreenVertices& vertices, std::uint32_t ci, std::uint32_t pass,
+               const CpuVertexSets& vertexSets, std::uint32_t ci, std::uint32_t pass,
                CpuItem* items, CpuBins& bins, std::uint32_t firstParts, std::uint32_t n0,
                std::uint32_t n1) {
   const CpuCommand& c = recording.commands[ci];
@@ -214,18 +214,18 @@ void makeItems(const CpuRecording& recording, std::span<const CpuMeshBounds> bou
   }
   const CpuMeshBounds& mesh = bounds[c.mesh];
   constexpr std::size_t kParts = kChunkTriangles / kPartTriangles;
-  static_assert(kParts == CpuScreenVertices::kChunkParts);
+  static_assert(kParts == CpuVertexSets::kChunkParts);
   // (Parts of one item lie in at most kParts mesh chunks: each its own copy when another thread
   // is making that chunk's.)
   std::array<std::array<CpuPartScreenBounds, kParts>, kParts> own;
   const auto meshPart = [&](std::uint32_t q, std::uint32_t p) {
-    const CpuPartScreenBounds* chunkParts =
-        vertices.parts(c, q / kParts, mesh.parts.size(),
-                       [&](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
-                         for (std::size_t k = 0; k < count; ++k)
-                           partBoundsOf(c.toScreen, mesh.parts[first + k], raster, out[k]);
-                       },
-                       own[p]);
+    const CpuPartScreenBounds* chunkParts = vertexSets.parts(
+        c, q / kParts, mesh.parts.size(),
+        [&](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
+          for (std::size_t k = 0; k < count; ++k)
+            partBoundsOf(c.toScreen, mesh.parts[first + k], raster, out[k]);
+        },
+        own[p]);
     return chunkParts + q % kParts;
   };
   std::array<const CpuPartScreenBounds*, kParts> parts;
@@ -343,7 +343,7 @@ void binChain(const CpuRecording& recording, const CpuBins& bins, tbb::task_aren
 }  // namespace
 
 void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
-                  const CpuScreenVertices& vertices, int tileSize, int continuedTileSize,
+                  const CpuVertexSets& vertexSets, int tileSize, int continuedTileSize,
                   tbb::task_arena* arena, CpuBins& bins) {
   const std::size_t commands = recording.commands.size();
   bins.firstItem.resize(commands + 1);
@@ -408,7 +408,7 @@ void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> 
   bins.boxCubes.resize(recording.boxes.size());
   const auto makeTask = [&](std::size_t t) {
     const auto [i, n0, n1] = bins.itemTasks[t];
-    makeItems(recording, bounds, vertices, i, passOf[i], bins.items.data() + bins.firstItem[i],
+    makeItems(recording, bounds, vertexSets, i, passOf[i], bins.items.data() + bins.firstItem[i],
               bins, bins.firstParts[i], n0, n1);
   };
   const std::size_t ends[] = {static_cast<std::size_t>(recorded - begin),

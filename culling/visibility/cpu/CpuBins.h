@@ -17,7 +17,7 @@
 #include "culling/visibility/cpu/CpuMeshBounds.h"
 #include "culling/visibility/cpu/CpuPixelRect.h"
 #include "culling/visibility/cpu/CpuRecording.h"
-#include "culling/visibility/cpu/CpuScreenVertices.h"
+#include "culling/visibility/cpu/CpuVertexSets.h"
 
 namespace cdb {
 
@@ -94,7 +94,7 @@ struct CpuBins {
 struct CpuRun {
   CpuRecording recording;
   CpuBins bins;
-  CpuScreenVertices vertices;
+  CpuVertexSets vertexSets;
 };
 
 // Tiles of a frame (per row and column) at `tileSize` pixels.
@@ -103,12 +103,12 @@ struct CpuRun {
 }
 
 // Makes the (closed) recording's items and chains, their tiles' lists not yet (binChains); its
-// commands' meshes are the scene's, `bounds` their CpuMeshBounds, `vertices` its vertex sets
+// commands' meshes are the scene's, `bounds` their CpuMeshBounds, `vertexSets` its vertex sets
 // (assigned: their part bounds are made here). Tiles are `tileSize` pixels (0: one tile the whole
 // frame, rounded up to a block); a chain that continues a buffer keeps that buffer's
 // `continuedTileSize`. Runs on `arena` when given.
 void binRecording(const CpuRecording& recording, std::span<const CpuMeshBounds> bounds,
-                  const CpuScreenVertices& vertices, int tileSize, int continuedTileSize,
+                  const CpuVertexSets& vertexSets, int tileSize, int continuedTileSize,
                   tbb::task_arena* arena, CpuBins& bins);
 
 class CpuAnswers;

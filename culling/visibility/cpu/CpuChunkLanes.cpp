@@ -71,7 +71,16 @@ void GatherChunkInLanes(const float* rows, std::uint32_t count, unsigned parts,
       keep = hn::AndNot(hn::Or(hn::Or(hn::Lt(maxX, wx0), hn::Gt(minX, wx1)),
                                hn::Or(hn::Lt(maxY, wy0), hn::Gt(minY, wy1))),
                         keep);
-      if (how.winding != 0) {  // chunkPieces' drawnForRole
+      // Of a solid mesh only the triangles that can decide the command. The mesh's winding number
+      // is never of the other sign than `winding` (solidWinding), so along every line of sight
+      // the first face crossed enters the solid, turned toward the viewer, and the last leaves
+      // it, turned away: in every pixel square, the farthest depth of the mesh over what it
+      // covers is reached on a face turned away (what a test needs) and the nearest on one turned
+      // toward the viewer (a write). Faces near edge-on (or collapsed) are kept for both: edgeOn
+      // lies far above double's rounding of the screen coordinates (2^-50 relative). The screen
+      // frame (x, y, key) is right-handed, so a counter-clockwise triangle in x, y faces along
+      // +key (facing > 0: turned away from the viewer).
+      if (how.winding != 0) {
         const VD e1x = hn::Sub(x[1], x[0]), e1y = hn::Sub(y[1], y[0]);
         const VD e2x = hn::Sub(x[2], x[0]), e2y = hn::Sub(y[2], y[0]);
         const VD facing = hn::Mul(winding, hn::Sub(hn::Mul(e1x, e2y), hn::Mul(e1y, e2x)));

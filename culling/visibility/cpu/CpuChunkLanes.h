@@ -2,8 +2,9 @@
 // A Range item's triangles gathered a SIMD step at a time (chunkPieces' path for a whole mesh
 // chunk): each triangle's corners read from its mesh's corner rows (CpuMeshBounds::chunkCorners)
 // without following an index, transformed into the pass' screen space in lanes, bounded, and kept
-// where chunkPieces keeps a triangle. Every value is the one-by-one gather's bit for bit: the same
-// transform of the same floats as CpuScreenVertices, the same comparisons and rounding.
+// where chunkPieces keeps a triangle. Every value is what the same steps one triangle at a time
+// give, bit for bit: the corners' screenPoint (CpuPassSpace.h), std::min and std::max over them,
+// the same comparisons.
 #include <cstdint>
 
 #include "culling/visibility/cpu/CpuPassSpace.h"

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numeric>
 #include <span>
-#include <unordered_map>
 
 #include "culling/visibility/cpu/CpuPassSpace.h"
 
@@ -94,25 +93,6 @@ std::vector<CpuMeshBounds> meshBoundsOf(const SceneGeometry& scene) {
       box.extend(m.vertices[t[1]]).extend(m.vertices[t[2]]);
       b.triangles.push_back(box);
     }
-    b.cornersInChunk.resize(n);
-    std::unordered_map<std::uint32_t, std::uint8_t> local;
-    for (std::size_t first = 0; first < n; first += kChunkTriangles) {
-      const std::size_t end = std::min<std::size_t>(first + kChunkTriangles, n);
-      b.chunkVertexStart.push_back(static_cast<std::uint32_t>(b.chunkVertices.size()));
-      local.clear();
-      for (std::size_t p = first; p < end; ++p) {
-        for (int v = 0; v < 3; ++v) {
-          const std::uint32_t vertex = m.triangles[b.order[p]][v];
-          const auto [at, added] =
-              local.try_emplace(vertex, static_cast<std::uint8_t>(local.size()));
-          if (added) b.chunkVertices.push_back(vertex);
-          b.cornersInChunk[p][v] = at->second;
-        }
-      }
-    }
-    b.chunkVertexStart.push_back(static_cast<std::uint32_t>(b.chunkVertices.size()));
-    b.chunkPositions.reserve(b.chunkVertices.size());
-    for (const std::uint32_t v : b.chunkVertices) b.chunkPositions.push_back(m.vertices[v]);
     const std::size_t chunks = (n + kChunkTriangles - 1) / kChunkTriangles;
     b.chunkCorners.resize(chunks * kChunkCornerRows * kChunkTriangles);
     for (std::size_t p = 0; p < chunks * kChunkTriangles; ++p) {

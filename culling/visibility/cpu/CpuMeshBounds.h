@@ -1,12 +1,12 @@
 #pragma once
-// What binning needs to know of each mesh of the attached scene without touching its triangles:
-// the order the backend draws its triangles in, a box per part of that order and per triangle (in
-// the mesh's own frame), and whether it is closed with a consistent winding (CpuCommand::winding).
+// What the backend keeps of each mesh of the attached scene: the order it draws its triangles in,
+// a box per part of that order and per triangle (in the mesh's own frame; binning bounds items by
+// them without touching a triangle), the triangles' corners in rows for the gather in SIMD lanes,
+// and whether it is closed with a consistent winding (CpuCommand::winding).
 // The order of a command's triangles changes no answer, so a mesh is drawn along a Morton curve
 // through their centroids where that makes its chunks more compact than its own order: a chunk is
 // then a patch of the surface, not a strip across it, and its rectangle and depth range are small.
 #include <Eigen/Geometry>
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -18,7 +18,7 @@ namespace cdb {
 // enough that a chunk's box is much tighter than its mesh's, large enough that binning costs
 // little beside them.
 inline constexpr std::uint32_t kChunkTriangles = 64;
-static_assert(3 * kChunkTriangles <= 256, "a chunk's vertices are numbered in a byte");
+static_assert(kChunkTriangles <= 256, "a triangle's offset in its chunk is a byte (CpuPieces)");
 // A chunk drawn in a tile is first sorted out by parts of this many triangles: a part whose box
 // misses the tile costs no transform.
 inline constexpr std::uint32_t kPartTriangles = 16;
@@ -31,20 +31,10 @@ struct CpuMeshBounds {
   std::vector<std::uint32_t> position;         // mesh triangle -> position
   std::vector<Eigen::AlignedBox3f> parts;      // part p: positions [p, p + 1) * kPartTriangles
   std::vector<Eigen::AlignedBox3f> triangles;  // per position
-  // The vertices of chunk c (positions [c, c + 1) * kChunkTriangles), each once (a vertex is shared
-  // by about six triangles, so a chunk is drawn with a fraction as many transforms):
-  // chunkVertices[chunkVertexStart[c] ... chunkVertexStart[c + 1]), and per position its triangle's
-  // corners among its chunk's vertices.
-  std::vector<std::uint32_t> chunkVertexStart;  // one more than there are chunks
-  std::vector<std::uint32_t> chunkVertices;
-  // The mesh's vertex of each entry of chunkVertices (a copy in that layout: a chunk's vertices
-  // are then read in a row when transformed, not gathered from all over the mesh).
-  std::vector<Eigen::Vector3f> chunkPositions;
-  std::vector<std::array<std::uint8_t, 3>> cornersInChunk;
-  // The corners again, triangle by triangle, in rows a SIMD step reads without following an index
-  // (CpuChunkLanes): chunk c's rows start at c * kChunkCornerRows * kChunkTriangles, and row
-  // 3 v + a holds coordinate a of corner v of its kChunkTriangles positions (those past the mesh's
-  // last triangle repeat it).
+  // Each triangle's corners, chunk by chunk (chunk c: positions [c, c + 1) * kChunkTriangles) in
+  // rows a SIMD step reads without following an index (CpuChunkLanes): chunk c's rows start at
+  // c * kChunkCornerRows * kChunkTriangles, and row 3 v + a holds coordinate a of corner v of its
+  // kChunkTriangles positions (those past the mesh's last triangle repeat it).
   std::vector<float> chunkCorners;
 };
 inline constexpr std::uint32_t kChunkCornerRows = 9;

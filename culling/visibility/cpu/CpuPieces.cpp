@@ -1,8 +1,6 @@
 #include "culling/visibility/cpu/CpuPieces.h"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 #include "culling/visibility/cpu/CpuChunkLanes.h"
 #include "culling/visibility/cpu/CpuPassSpace.h"
@@ -10,23 +8,6 @@
 namespace cdb {
 
 namespace {
-
-// Whether a triangle of a solid mesh can decide its command. The mesh's winding number is never of
-// the other sign than `winding` (solidWinding), so along every line of sight the first face crossed
-// enters the solid, turned toward the viewer, and the last leaves it, turned away: in every pixel
-// square, the farthest depth of the mesh over what it covers is reached on a face turned away
-// (what a test needs) and the nearest on one turned toward the viewer (a write). Faces near edge-on
-// (or collapsed) are kept for both. The screen frame (x, y, key) is right-handed, so a
-// counter-clockwise triangle in x, y faces along +key.
-inline bool drawnForRole(const ScreenTriangle& t, std::int8_t winding, CpuCommand::Role role) {
-  if (winding == 0) return true;
-  const double e1x = t.x[1] - t.x[0], e1y = t.y[1] - t.y[0];
-  const double e2x = t.x[2] - t.x[0], e2y = t.y[2] - t.y[0];
-  const double facing = winding * (e1x * e2y - e1y * e2x);  // > 0: turned away from the viewer
-  // Far above double's rounding of the screen coordinates (2^-50 relative).
-  const double edgeOn = 1e-9 * (std::abs(e1x) + std::abs(e1y)) * (std::abs(e2x) + std::abs(e2y));
-  return role == CpuCommand::Role::Test ? facing >= -edgeOn : facing <= edgeOn;
-}
 
 // The unit cube [-1, 1]^3 (corner i has x, y, z = bits 0, 1, 2) as two triangles per face;
 // faces in the order -x, +x, -y, +y, -z, +z. A face's two triangles share their first and third
@@ -77,59 +58,36 @@ void chunkPieces(const CpuRun& run, const CpuMeshBounds& bounds, const CpuComman
   const double wy0 = window.y0 - below, wy1 = window.y1 + above;
   const CpuItemParts& partRects = run.bins.parts[item.parts];
   const std::uint32_t count = item.count;
-  if (!listed && item.first % kChunkTriangles == 0) {  // a whole mesh chunk's rows, in lanes
-    unsigned parts = 0;
-    for (std::uint32_t part = 0; part < count; part += kPartTriangles)
-      if (partRects[part / kPartTriangles].overlaps(window)) parts |= 1u << (part / kPartTriangles);
-    const ChunkGather how{
-        {wx0, wx1, wy0, wy1}, c.winding, c.role == CpuCommand::Role::Test, marginPx, everyCorner};
-    gatherChunkInLanes(bounds.chunkCorners.data() + std::size_t{item.first} / kChunkTriangles *
-                                                        kChunkCornerRows * kChunkTriangles,
+  unsigned parts = 0;
+  for (std::uint32_t part = 0; part < count; part += kPartTriangles)
+    if (partRects[part / kPartTriangles].overlaps(window)) parts |= 1u << (part / kPartTriangles);
+  const ChunkGather how{
+      {wx0, wx1, wy0, wy1}, c.winding, c.role == CpuCommand::Role::Test, marginPx, everyCorner};
+  constexpr std::size_t kChunkRows = std::size_t{kChunkCornerRows} * kChunkTriangles;
+  if (!listed && item.first % kChunkTriangles == 0) {  // a mesh chunk's own rows
+    gatherChunkInLanes(bounds.chunkCorners.data() + item.first / kChunkTriangles * kChunkRows,
                        count, parts, c.toScreen, how, out);
     return;
   }
+  // Other triangles (a list's, or a Range off the chunk grid) copied into rows of their own, those
+  // of the parts that meet the window; a SIMD step past the item's last triangle repeats it.
+  alignas(64) float rows[kChunkRows];
   const auto triangleAt = [&](std::uint32_t i) {
     return listed ? run.recording.listed[item.first + i] : item.first + i;
   };
-  // A triangle's corners are vertices of its mesh chunk (CpuMeshBounds::cornersInChunk), and a
-  // list is in ascending order almost always, so one chunk's screen vertices are at hand at a time.
-  std::uint32_t chunk = ~std::uint32_t{0};
-  const CpuScreenVertex* vertices = nullptr;
-  bool finite = true;  // every coordinate of the chunk's vertices
-  TriangleExtents& e = out.extents;
-  std::size_t kept = 0;
   for (std::uint32_t part = 0; part < count; part += kPartTriangles) {
-    if (!partRects[part / kPartTriangles].overlaps(window)) continue;
+    if ((parts >> (part / kPartTriangles) & 1u) == 0) continue;
     const std::uint32_t end = std::min(count, part + kPartTriangles);
-    for (std::uint32_t i = part; i < end; ++i) {
-      const std::uint32_t tri = triangleAt(i);
-      if (tri / kChunkTriangles != chunk) {
-        chunk = tri / kChunkTriangles;
-        vertices = run.vertices.chunk(c, bounds, chunk, finite);
-      }
-      ScreenTriangle& s = out.triangles[kept];
-      const auto& at = bounds.cornersInChunk[tri];
-      for (int v = 0; v < 3; ++v) {
-        const CpuScreenVertex& p = vertices[at[v]];
-        s.x[v] = p.x, s.y[v] = p.y, s.k[v] = p.k;
-      }
-      // (A non-finite vertex fails every comparison and is kept: the set-up drops it.)
-      const double minX = std::min({s.x[0], s.x[1], s.x[2]});
-      const double maxX = std::max({s.x[0], s.x[1], s.x[2]});
-      const double minY = std::min({s.y[0], s.y[1], s.y[2]});
-      const double maxY = std::max({s.y[0], s.y[1], s.y[2]});
-      if (maxX < wx0 || minX > wx1 || maxY < wy0 || minY > wy1) continue;
-      if (!drawnForRole(s, c.winding, c.role)) continue;
-      constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-      e.minX[kept] = finite || raster_detail::allFinite(s) ? minX : kNaN;
-      e.maxX[kept] = maxX, e.minY[kept] = minY, e.maxY[kept] = maxY;
-      e.minK[kept] = std::min({s.k[0], s.k[1], s.k[2]});
-      e.maxK[kept] = std::max({s.k[0], s.k[1], s.k[2]});
-      out.offset[kept++] = static_cast<std::uint8_t>(i);
+    const std::uint32_t filled = std::min(part + kPartTriangles, (end + 7) / 8 * 8);
+    for (std::uint32_t i = part; i < filled; ++i) {
+      const std::uint32_t tri = triangleAt(std::min(i, end - 1));
+      const float* from =
+          bounds.chunkCorners.data() + tri / kChunkTriangles * kChunkRows + tri % kChunkTriangles;
+      for (std::uint32_t r = 0; r < kChunkCornerRows; ++r)
+        rows[r * kChunkTriangles + i] = from[r * kChunkTriangles];
     }
   }
-  if (kept != 0) e.padFrom(kept - 1, (kept + 7) / 8 * 8);
-  out.count = kept;
+  gatherChunkInLanes(rows, count, parts, c.toScreen, how, out);
 }
 
 ScreenMatrix cubeToScreen(const ScreenMatrix& objectToScreen, const OrientedBox& box) {

@@ -1,8 +1,8 @@
 #pragma once
 // The pieces a binned item draws, in its pass' screen space (x, y in pixels, depth key): a chunk
-// of a command's triangles (from its run's screen vertices, CpuScreenVertices), or one box's faces
-// that decide its answer. Gathered again in every tile that rasterises the item; binning itself
-// never transforms a triangle.
+// of a command's triangles (transformed from its mesh's corner rows in SIMD lanes, CpuChunkLanes),
+// or one box's faces that decide its answer. Gathered again in every tile that rasterises the
+// item; binning itself never transforms a triangle.
 #include <array>
 #include <cstddef>
 #include <cstdint>

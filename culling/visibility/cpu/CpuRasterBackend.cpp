@@ -405,9 +405,9 @@ void CpuRasterBackend::flush() {
                 : 0;
   tbb::task_arena* arena = threads_ > 1 ? arena_.get() : nullptr;
   putInDrawOrder(recording, meshBounds_, orderScratch_);
-  run.vertices.assign(recording, meshBounds_);
-  binRecording(recording, meshBounds_, run.vertices, evaluation_.tileSize, continuedTileSize, arena,
-               run.bins);
+  run.vertexSets.assign(recording, meshBounds_);
+  binRecording(recording, meshBounds_, run.vertexSets, evaluation_.tileSize, continuedTileSize,
+               arena, run.bins);
   answers_.resize(issued_, 1);
 
   // Where each chain's tiles live: a continued chain in the store that holds it, the last chain

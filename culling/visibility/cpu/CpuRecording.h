@@ -44,7 +44,7 @@ struct CpuCommand {
   std::uint32_t first = 0;
   std::uint32_t count = 0;
   QueryIndex query = 0;  // the (first) answer's index
-  std::uint32_t vertexSet = 0;  // Range and Listed: its CpuScreenVertices set (set at a run)
+  std::uint32_t vertexSet = 0;  // Range and Listed: its CpuVertexSets set (set at a run)
   // Boxes: the earlier command of the recording that recorded them, when it drew the same
   // object's boxes, bit for bit, under the same matrix (a node's test and write, in both of
   // CULLIDE's passes of a view); kOwnBoxes: recorded by this one.

@@ -1,12 +1,8 @@
 #pragma once
 // What a run knows per vertex set: one mesh under one matrix in passes of one pixel grid (an
-// object's tests and writes in a pass, CULLIDE's two passes of a view share one). Its vertices'
-// screen positions, each transformed once, a mesh chunk at a time (CpuMeshBounds::chunkVertices)
-// when a tile first needs that chunk, however many tiles and commands draw it after; and binning's
-// screen bounds of its mesh parts (CpuPartScreenBounds), made a mesh chunk at a time when an item
-// first needs them, however many commands draw the set. The thread that claims a chunk makes it;
-// one that needs its vertices meanwhile waits for them (one that needs its part bounds makes its
-// own).
+// object's tests and writes in a pass, CULLIDE's two passes of a view share one): binning's screen
+// bounds of its mesh parts (CpuPartScreenBounds), made a mesh chunk at a time when an item first
+// needs them, however many commands draw the set.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -22,10 +18,6 @@
 
 namespace cdb {
 
-struct CpuScreenVertex {
-  double x, y, k;
-};
-
 // A mesh part's box (CpuMeshBounds::parts) in a vertex set's screen space: its extent (x, y, key;
 // exact up to rounding), and the pixels a triangle of it can cover (CpuBins).
 struct CpuPartScreenBounds {
@@ -35,17 +27,13 @@ struct CpuPartScreenBounds {
   bool finite = false;   // its extent is finite
 };
 
-class CpuScreenVertices {
+class CpuVertexSets {
  public:
   static constexpr std::uint32_t kChunkParts = kChunkTriangles / kPartTriangles;
 
   // Numbers the vertex sets of the (closed) recording's mesh commands (CpuCommand::vertexSet)
-  // and makes room for them; none is transformed or bounded yet.
+  // and makes room for them; none is bounded yet.
   void assign(CpuRecording& recording, std::span<const CpuMeshBounds> bounds);
-  // The vertices of chunk `chunk` of command `c`'s mesh (chunkVertices' order), transformed
-  // (read from bounds.chunkPositions); `finite` says whether all their coordinates are.
-  [[nodiscard]] const CpuScreenVertex* chunk(const CpuCommand& c, const CpuMeshBounds& bounds,
-                                             std::uint32_t chunk, bool& finite) const;
   // The screen bounds of the mesh parts of chunk `chunk` of command `c`'s mesh (its
   // kChunkParts parts, fewer in the mesh's last chunk), made by make(firstPart, count, out) the
   // first time any thread asks. A thread that finds them being made by another makes the same
@@ -86,17 +74,11 @@ class CpuScreenVertices {
     return Claim::Others;
   }
   struct Set {
-    std::size_t firstVertex = 0;  // in positions_, chunkVertices' layout
-    std::size_t firstChunk = 0;   // in the states (and kChunkParts times that in parts_)
+    std::size_t firstChunk = 0;  // in the states (and kChunkParts times that in parts_)
   };
   std::vector<Set> sets_;
-  mutable GrowOnlyArray<CpuScreenVertex> positions_;
   mutable GrowOnlyArray<CpuPartScreenBounds> parts_;
-  mutable std::unique_ptr<std::atomic<std::uint8_t>[]> states_;
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> partStates_;
-  // Per chunk, once made: whether every coordinate of its vertices is finite (written before its
-  // state says made).
-  mutable std::unique_ptr<std::uint8_t[]> finite_;
   std::size_t stateCapacity_ = 0;
 };
 

@@ -1,7 +1,6 @@
-// The cpu backend's vertex sets (CpuScreenVertices): which commands share one (one mesh, one
-// matrix, one pixel grid), and that what a set keeps per mesh chunk (its vertices transformed,
-// binning's part bounds) is made once for all of them; the vertices by one thread however many
-// ask at once, the part bounds by a thread that finds them being made into its own copy.
+// The cpu backend's vertex sets (CpuVertexSets): which commands share one (one mesh, one matrix,
+// one pixel grid), and that what a set keeps per mesh chunk (binning's part bounds) is made once
+// for all of them, by a thread that finds them being made into its own copy.
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
@@ -10,10 +9,10 @@
 #include <vector>
 
 #include "culling/visibility/cpu/CpuPassSpace.h"
-#include "culling/visibility/cpu/CpuScreenVertices.h"
+#include "culling/visibility/cpu/CpuVertexSets.h"
 #include "tests/visibility/GlTestSupport.h"
 
-namespace cdb::screen_vertices_test {
+namespace cdb::vertex_sets_test {
 namespace {
 
 // A strip of `n` triangles (n / 64 chunks and more).
@@ -60,21 +59,21 @@ CpuRecording recordingOf(const std::vector<std::vector<Draw>>& passes, std::uint
   return r;
 }
 
-class CpuScreenVerticesTest : public ::testing::Test {
+class CpuVertexSetsTest : public ::testing::Test {
  protected:
   static constexpr int kTriangles = 300;  // 5 chunks, the last of 44 triangles (11 parts)
   SceneGeometry scene = test::sceneOf({stripMesh(kTriangles)});
   std::vector<CpuMeshBounds> bounds = meshBoundsOf(scene);
 };
 
-TEST_F(CpuScreenVerticesTest, CommandsShareASetOnlyWithTheSameMatrixAndPixelGrid) {
+TEST_F(CpuVertexSetsTest, CommandsShareASetOnlyWithTheSameMatrixAndPixelGrid) {
   CpuRecording r = recordingOf({{{64, 0.01, 10.0}, {64, 0.01, 10.0}, {64, 0.01, 20.0}},
                                 {{64, 0.01, 10.0}},
                                 {{128, 0.01, 10.0}},
                                 {{64, 0.02, 10.0}}},
                                kTriangles);
-  CpuScreenVertices vertices;
-  vertices.assign(r, bounds);
+  CpuVertexSets sets;
+  sets.assign(r, bounds);
   const auto set = [&](int i) { return r.commands[static_cast<std::size_t>(i)].vertexSet; };
   EXPECT_EQ(set(0), set(1));  // a test and a write of one matrix in one pass
   EXPECT_EQ(set(0), set(3));  // the same in a later pass of the same grid
@@ -84,42 +83,43 @@ TEST_F(CpuScreenVerticesTest, CommandsShareASetOnlyWithTheSameMatrixAndPixelGrid
   EXPECT_NE(set(4), set(5));
 }
 
-TEST_F(CpuScreenVerticesTest, PartBoundsAreMadeOncePerSetAndChunk) {
-  CpuRecording r = recordingOf({{{64, 0.01, 10.0}, {64, 0.01, 10.0}, {64, 0.01, 20.0}}}, kTriangles);
-  CpuScreenVertices vertices;
-  vertices.assign(r, bounds);
+TEST_F(CpuVertexSetsTest, PartBoundsAreMadeOncePerSetAndChunk) {
+  CpuRecording r =
+      recordingOf({{{64, 0.01, 10.0}, {64, 0.01, 10.0}, {64, 0.01, 20.0}}}, kTriangles);
+  CpuVertexSets sets;
+  sets.assign(r, bounds);
   const std::size_t meshParts = bounds[0].parts.size();
   ASSERT_EQ(meshParts, 19u);  // 300 triangles in parts of 16
   int made = 0;
-  std::array<CpuPartScreenBounds, CpuScreenVertices::kChunkParts> own;
+  std::array<CpuPartScreenBounds, CpuVertexSets::kChunkParts> own;
   std::vector<std::pair<std::size_t, std::size_t>> asked;
   const auto make = [&](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
     ++made;
     asked.emplace_back(first, count);
     for (std::size_t k = 0; k < count; ++k) out[k].rect = {static_cast<int>(first + k), 0, 0, 0};
   };
-  const CpuPartScreenBounds* first = vertices.parts(r.commands[0], 4, meshParts, make, own);
+  const CpuPartScreenBounds* first = sets.parts(r.commands[0], 4, meshParts, make, own);
   EXPECT_EQ(made, 1);
   ASSERT_EQ(asked.back(), (std::pair<std::size_t, std::size_t>{16, 3}));  // the last chunk's 3
   // The write of the same set reads what the test's binning made.
-  EXPECT_EQ(vertices.parts(r.commands[1], 4, meshParts, make, own), first);
+  EXPECT_EQ(sets.parts(r.commands[1], 4, meshParts, make, own), first);
   EXPECT_EQ(made, 1);
   EXPECT_EQ(first[2].rect.x0, 18);
   // Another chunk, and another set, are made on their own.
-  (void)vertices.parts(r.commands[1], 0, meshParts, make, own);
+  (void)sets.parts(r.commands[1], 0, meshParts, make, own);
   EXPECT_EQ(asked.back(), (std::pair<std::size_t, std::size_t>{0, 4}));
-  EXPECT_NE(vertices.parts(r.commands[2], 4, meshParts, make, own), first);
+  EXPECT_NE(sets.parts(r.commands[2], 4, meshParts, make, own), first);
   EXPECT_EQ(made, 3);
   // A new recording starts over.
-  vertices.assign(r, bounds);
-  (void)vertices.parts(r.commands[0], 4, meshParts, make, own);
+  sets.assign(r, bounds);
+  (void)sets.parts(r.commands[0], 4, meshParts, make, own);
   EXPECT_EQ(made, 4);
 }
 
-TEST_F(CpuScreenVerticesTest, ThreadsAskingAtOnceGetMadeChunks) {
+TEST_F(CpuVertexSetsTest, ThreadsAskingAtOnceGetMadeChunks) {
   CpuRecording r = recordingOf({{{64, 0.01, 10.0}, {64, 0.01, 10.0}}}, kTriangles);
-  CpuScreenVertices vertices;
-  vertices.assign(r, bounds);
+  CpuVertexSets sets;
+  sets.assign(r, bounds);
   const std::size_t meshParts = bounds[0].parts.size();
   const auto make = [](std::size_t first, std::size_t count, CpuPartScreenBounds* out) {
     for (std::size_t k = 0; k < count; ++k) out[k].rect.x0 = static_cast<int>(first + k);
@@ -128,24 +128,20 @@ TEST_F(CpuScreenVerticesTest, ThreadsAskingAtOnceGetMadeChunks) {
   tbb::parallel_for(0, 2000, [&](int i) {
     const auto chunk = static_cast<std::uint32_t>(i % 5);
     const CpuCommand& c = r.commands[static_cast<std::size_t>(i % 2)];
-    std::array<CpuPartScreenBounds, CpuScreenVertices::kChunkParts> own;
-    if (vertices.parts(c, chunk, meshParts, make, own)[0].rect.x0 != static_cast<int>(chunk) * 4)
+    std::array<CpuPartScreenBounds, CpuVertexSets::kChunkParts> own;
+    if (sets.parts(c, chunk, meshParts, make, own)[0].rect.x0 != static_cast<int>(chunk) * 4)
       ++wrong;  // made before it is read, by this thread or another
-    bool finite = false;
-    const CpuScreenVertex* v = vertices.chunk(c, bounds[0], chunk, finite);
-    EXPECT_TRUE(finite);
-    const Eigen::Vector3f& p = bounds[0].chunkPositions[bounds[0].chunkVertexStart[chunk]];
-    if (v[0].x != screenPoint(matrix(10.0), p.x(), p.y(), p.z()).x) ++wrong;  // transformed
   });
   EXPECT_EQ(wrong.load(), 0);
   // Every chunk's bounds are the set's now: nothing is made again.
   int made = 0;
-  std::array<CpuPartScreenBounds, CpuScreenVertices::kChunkParts> own;
+  std::array<CpuPartScreenBounds, CpuVertexSets::kChunkParts> own;
   for (std::uint32_t chunk = 0; chunk < 5; ++chunk)
-    (void)vertices.parts(r.commands[0], chunk, meshParts,
-                         [&](std::size_t, std::size_t, CpuPartScreenBounds*) { ++made; }, own);
+    (void)sets.parts(
+        r.commands[0], chunk, meshParts,
+        [&](std::size_t, std::size_t, CpuPartScreenBounds*) { ++made; }, own);
   EXPECT_EQ(made, 0);
 }
 
 }  // namespace
-}  // namespace cdb::screen_vertices_test
+}  // namespace cdb::vertex_sets_test
