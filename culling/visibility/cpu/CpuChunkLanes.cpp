@@ -62,7 +62,8 @@ void GatherChunkInLanes(const float* rows, std::uint32_t count, unsigned parts,
         y[v] = screenRow(m[1], px, py, pz, false);
         k[v] = screenRow(m[2], px, py, pz, true);
       }
-      // chunkPieces' std::min({a, b, c}) and std::max({a, b, c}): the first of the lowest.
+      // std::min({a, b, c}) and std::max({a, b, c}) of the corners: the first of the lowest
+      // (highest), as the set-up takes them (raster_detail::smallest, largest).
       const VD minX = lesserOf(lesserOf(x[0], x[1]), x[2]);
       const VD maxX = greaterOf(greaterOf(x[0], x[1]), x[2]);
       const VD minY = lesserOf(lesserOf(y[0], y[1]), y[2]);
@@ -90,7 +91,7 @@ void GatherChunkInLanes(const float* rows, std::uint32_t count, unsigned parts,
       }
       const std::size_t n = hn::CountTrue(dd, keep);
       if (n == 0) continue;
-      auto finite = hn::IsFinite(x[0]);
+      auto finite = hn::FirstN(dd, lanes);
       for (int v = 0; v < 3; ++v)
         finite = hn::And(
             finite, hn::And(hn::IsFinite(x[v]), hn::And(hn::IsFinite(y[v]), hn::IsFinite(k[v]))));

@@ -1,10 +1,10 @@
 #pragma once
-// A Range item's triangles gathered a SIMD step at a time (chunkPieces' path for a whole mesh
-// chunk): each triangle's corners read from its mesh's corner rows (CpuMeshBounds::chunkCorners)
-// without following an index, transformed into the pass' screen space in lanes, bounded, and kept
-// where chunkPieces keeps a triangle. Every value is what the same steps one triangle at a time
-// give, bit for bit: the corners' screenPoint (CpuPassSpace.h), std::min and std::max over them,
-// the same comparisons.
+// An item's triangles gathered a SIMD step at a time (chunkPieces): their corners read from rows
+// (a mesh chunk's own, CpuMeshBounds::chunkCorners, or a list's copy of its triangles') without
+// following an index, transformed into the pass' screen space in lanes, bounded, and kept where
+// their pixel box can meet the window and they face the command's role. Every value is what the
+// same steps one triangle at a time give, bit for bit: the corners' screenPoint (CpuPassSpace.h),
+// std::min and std::max over them, the same comparisons.
 #include <cstdint>
 
 #include "culling/visibility/cpu/CpuPassSpace.h"
@@ -29,9 +29,11 @@ struct ChunkGather {
   bool everyCorner = true;
 };
 
-// The first `count` triangles of the chunk whose corner rows start at `rows`, in the parts
-// whose bit is set in `parts` (part p: triangles [p, p + 1) * kPartTriangles), under `toScreen`:
-// those kept, with their extents and offsets, into out (count, triangles, extents, offset).
+// The first `count` triangles of the corner rows at `rows` (kChunkCornerRows rows of
+// kChunkTriangles floats; a SIMD step past `count` reads on to the next multiple of 8), in the
+// parts whose bit is set in `parts` (part p: triangles [p, p + 1) * kPartTriangles), under
+// `toScreen`: those kept, with their extents and offsets, into out (count, triangles, extents,
+// offset).
 void gatherChunkInLanes(const float* rows, std::uint32_t count, unsigned parts,
                         const ScreenMatrix& toScreen, const ChunkGather& how, CpuPieces& out);
 
