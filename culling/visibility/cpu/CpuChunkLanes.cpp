@@ -68,6 +68,7 @@ void GatherChunkInLanes(const float* rows, std::uint32_t count, unsigned parts,
       const VD maxX = greaterOf(greaterOf(x[0], x[1]), x[2]);
       const VD minY = lesserOf(lesserOf(y[0], y[1]), y[2]);
       const VD maxY = greaterOf(greaterOf(y[0], y[1]), y[2]);
+      // (A non-finite coordinate fails every comparison and is kept: the set-up drops it.)
       auto keep = hn::FirstN(dd, end - i);
       keep = hn::AndNot(hn::Or(hn::Or(hn::Lt(maxX, wx0), hn::Gt(minX, wx1)),
                                hn::Or(hn::Lt(maxY, wy0), hn::Gt(minY, wy1))),
