@@ -1,10 +1,7 @@
 #include "culling/visibility/cpu/CpuVertexSets.h"
 
-#include <cmath>
 #include <cstring>
 #include <unordered_map>
-
-#include "culling/visibility/cpu/CpuPassSpace.h"
 
 namespace cdb {
 
