@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "culling/visibility/cpu/CpuChunkLanes.h"
+#include "culling/visibility/cpu/CpuPassSpace.h"
 
 namespace cdb {
 namespace {

@@ -7,7 +7,6 @@
 // std::min and std::max over them, the same comparisons.
 #include <cstdint>
 
-#include "culling/visibility/cpu/CpuPassSpace.h"
 #include "culling/visibility/cpu/CpuPieces.h"
 
 namespace cdb {
