@@ -40,7 +40,7 @@ void GatherChunkInLanes(const float* rows, std::uint32_t count, unsigned parts,
   const VD wx0 = hn::Set(dd, how.window.x0), wx1 = hn::Set(dd, how.window.x1);
   const VD wy0 = hn::Set(dd, how.window.y0), wy1 = hn::Set(dd, how.window.y1);
   const VD below = hn::Set(dd, -how.marginPx), above = hn::Set(dd, how.marginPx);
-  const VD one = hn::Set(dd, 1.0), small = hn::Set(dd, static_cast<double>(kSmallBox));
+  const VD small = hn::Set(dd, static_cast<double>(kSmallBox));
   const VD winding = hn::Set(dd, static_cast<double>(how.winding));
   const VD edgeScale = hn::Set(dd, 1e-9);
   const VD nan = hn::Set(dd, std::numeric_limits<double>::quiet_NaN());
@@ -105,14 +105,12 @@ void GatherChunkInLanes(const float* rows, std::uint32_t count, unsigned parts,
       hn::Store(lesserOf(lesserOf(k[0], k[1]), k[2]), dd, extent[4]);
       hn::Store(greaterOf(greaterOf(k[0], k[1]), k[2]), dd, extent[5]);
       // Corners where the set-up may read them: every kept triangle, or those whose pixel box
-      // before clipping (setupBounds' ceil(min - margin) - 1 to floor(max + margin)) is not
-      // small; clipping to the frame only shrinks it.
+      // before clipping (the set-up's, firstPixelOf to lastPixelOf) is not small; clipping to the
+      // frame only shrinks it.
       auto needs = keep;
       if (!how.everyCorner) {
-        const VD w =
-            hn::Sub(hn::Floor(hn::Add(maxX, above)), hn::Sub(hn::Ceil(hn::Add(minX, below)), one));
-        const VD h =
-            hn::Sub(hn::Floor(hn::Add(maxY, above)), hn::Sub(hn::Ceil(hn::Add(minY, below)), one));
+        const VD w = hn::Sub(lastPixelOf(maxX, above), firstPixelOf(minX, below));
+        const VD h = hn::Sub(lastPixelOf(maxY, above), firstPixelOf(minY, below));
         needs = hn::AndNot(hn::And(hn::Lt(w, small), hn::Lt(h, small)), keep);
       }
       std::uint8_t keepBits = 0, needBits = 0;

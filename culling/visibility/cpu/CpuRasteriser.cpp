@@ -646,10 +646,9 @@ HWY_INLINE void boundsFromExtents(hn::Vec<DD> minX, hn::Vec<DD> maxX, hn::Vec<DD
   const hn::Rebind<std::int32_t, DD> di;
   const double m = pass.marginPx;
   const auto one = hn::Set(dd, 1.0);
-  auto bx0 = hn::Sub(hn::Ceil(hn::Add(minX, hn::Set(dd, -m))), one);
-  auto by0 = hn::Sub(hn::Ceil(hn::Add(minY, hn::Set(dd, -m))), one);
-  auto bx1 = hn::Floor(hn::Add(maxX, hn::Set(dd, m)));
-  auto by1 = hn::Floor(hn::Add(maxY, hn::Set(dd, m)));
+  const auto below = hn::Set(dd, -m), above = hn::Set(dd, m);
+  auto bx0 = firstPixelOf(minX, below), by0 = firstPixelOf(minY, below);
+  auto bx1 = lastPixelOf(maxX, above), by1 = lastPixelOf(maxY, above);
   const auto last = hn::Set(dd, static_cast<double>(pass.resolution - 1));
   bx0 = greaterOf(bx0, hn::Zero(dd)), by0 = greaterOf(by0, hn::Zero(dd));
   bx1 = lesserOf(bx1, last), by1 = lesserOf(by1, last);
