@@ -4,7 +4,7 @@
 //
 //   cull/<env>/<strategy>/<backend>/res:<r>/manual_time   a strategy's cull() of the frame on a
 //                                             visibility backend (backend "-" for the CPU peers)
-//   cpu_tiles/env3/<strategy>/<evaluation>/threads:<n>/manual_time   the cpu backend's tile sizes,
+//   cpu_tiles/<env>/<strategy>/<evaluation>/threads:<n>/manual_time   the cpu backend's tile sizes,
 //                                             plain evaluation and threads (800 px)
 //   floor/<env>/<strategy>/<backend>/res:<r>/real_time   that cull's backend work replayed bare
 //   exact/<env>/ours_sets                     the exact phase on the sets `ours` leaves (800)
@@ -14,11 +14,12 @@
 //   dynamics/<env>                            one frame of the env's rigid-body simulation
 //
 // for env1, env2, env3 (RecordedFrames.h says which frame), every visibility backend that starts
-// here (`cdbench backends`) and r = 256, 800; each file's head says what its benchmarks measure. Times are milliseconds per iteration; counters are per
-// iteration. The GL benchmarks are timed on the wall clock (Google Benchmark then appends
-// /real_time to their names): GL work runs asynchronously, on llvmpipe in its own threads, so the
-// calling thread's CPU time misses most of it. Google Benchmark's default --benchmark_min_time
-// (0.5 s) keeps a heavy cell to one iteration: a cull of env2 by CULLIDE takes minutes.
+// here (`cdbench backends`) and r = 256, 800; each file's head says what its benchmarks measure.
+// Times are milliseconds per iteration; counters are per iteration. The GL benchmarks are timed on
+// the wall clock (Google Benchmark then appends /real_time to their names): GL work runs
+// asynchronously, on llvmpipe in its own threads, so the calling thread's CPU time misses most of
+// it. Google Benchmark's default --benchmark_min_time (0.5 s) keeps a heavy cell to one iteration:
+// a cull of env2 by CULLIDE takes minutes.
 #include <exception>
 #include <string>
 #include <string_view>

@@ -6,10 +6,11 @@
 // exact phase included, and the resolution changes nothing.
 //
 //
-// cpu_tiles/env3/<strategy>/<evaluation>/threads:<n>/manual_time: the same on the cpu backend at
-// 800 px for ours, cullide and cullide_oi, evaluated on demand in tiles of 16, 32 or 64 pixels
-// (tile:<t>) or plainly (plain: every write rasterised, every test tested, one tile), at 1 and 2
-// threads: what the tile size and the threads change, with the tile counters.
+// cpu_tiles/<env>/<strategy>/<evaluation>/threads:<n>/manual_time: the same on the cpu backend at
+// 800 px, evaluated on demand in tiles of 16, 32 or 64 pixels (tile:<t>) or plainly (plain: every
+// write rasterised, every test tested, one tile), at 1 and 2 threads: what the tile size and the
+// threads change, with the tile counters. env3: ours, cullide and cullide_oi, every evaluation;
+// env2: cullide, quick_cullide and cullide_oi, plain and tile:64.
 //
 // gl_profile/env3/<strategy>/<backend>/res:<800|64>[/raw]/manual_time: the same cull on a GL
 // backend (conservative at 800 and 64 px, raw at 800) with every draw timed on the GPU
@@ -162,17 +163,26 @@ void registerCullBenchmarks(RecordedFrames& frames) {
                                     {"tile:16", {16, true, true}},
                                     {"tile:32", {32, true, true}},
                                     {"tile:64", {64, true, true}}};
+  const auto registerEvaluation = [&frames](const std::string& environment,
+                                            const std::string& strategy, const Evaluation& e) {
+    for (int threads : {1, 2}) {
+      const CpuSetting cpu{true, e.evaluation, threads};
+      registerMilliseconds("cpu_tiles/" + environment + "/" + strategy + "/" + e.name +
+                               "/threads:" + std::to_string(threads),
+                           [&frames, environment, strategy, cpu](benchmark::State& state) {
+                             cullMeasuredFrame(state, frames, environment, strategy, "cpu", 800,
+                                               cpu);
+                           })
+          ->UseManualTime();
+    }
+  };
   for (const std::string strategy : {"ours", "cullide", "cullide_oi"})
-    for (const Evaluation& e : evaluations)
-      for (int threads : {1, 2}) {
-        const CpuSetting cpu{true, e.evaluation, threads};
-        registerMilliseconds("cpu_tiles/env3/" + strategy + "/" + e.name + "/threads:" +
-                                 std::to_string(threads),
-                             [&frames, strategy, cpu](benchmark::State& state) {
-                               cullMeasuredFrame(state, frames, "env3", strategy, "cpu", 800, cpu);
-                             })
-            ->UseManualTime();
-      }
+    for (const Evaluation& e : evaluations) registerEvaluation("env3", strategy, e);
+  // env2's small triangles: what the demand-driven evaluation saves against drawing every
+  // command's triangles (docs/cpu-backend-history.md, "the plain evaluation on env2").
+  for (const std::string strategy : {"cullide", "quick_cullide", "cullide_oi"})
+    for (const Evaluation& e : {evaluations[0], evaluations[3]})
+      registerEvaluation("env2", strategy, e);
   // Where a GL backend's time goes (env3): at 800 px, conservative and raw (what the conservative
   // stage costs), and at 64 px (what is left when there are hardly any pixels).
   for (const std::string& backend : frames.backends()) {
