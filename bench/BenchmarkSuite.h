@@ -19,7 +19,7 @@
 // the wall clock (Google Benchmark then appends /real_time to their names): GL work runs
 // asynchronously, on llvmpipe in its own threads, so the calling thread's CPU time misses most of
 // it. Google Benchmark's default --benchmark_min_time (0.5 s) keeps a heavy cell to one iteration:
-// a cull of env2 by CULLIDE takes minutes.
+// a cull of env2 by CULLIDE on a GL backend takes 30-55 s on llvmpipe (RecordedFrames.h).
 #include <exception>
 #include <string>
 #include <string_view>
