@@ -181,8 +181,8 @@ void registerCullBenchmarks(RecordedFrames& frames) {
   // env2's small triangles: what the demand-driven evaluation saves against drawing every
   // command's triangles (docs/cpu-backend-history.md, "the plain evaluation on env2").
   for (const std::string strategy : {"cullide", "quick_cullide", "cullide_oi"})
-    for (const Evaluation& e : {evaluations[0], evaluations[3]})
-      registerEvaluation("env2", strategy, e);
+    for (const Evaluation& e : evaluations)
+      if (e.name == "plain" || e.name == "tile:64") registerEvaluation("env2", strategy, e);
   // Where a GL backend's time goes (env3): at 800 px, conservative and raw (what the conservative
   // stage costs), and at 64 px (what is left when there are hardly any pixels).
   for (const std::string& backend : frames.backends()) {
